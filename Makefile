@@ -1,0 +1,38 @@
+# Skydeck: `make up` runs the whole system, `make test` sets up and runs the tests.
+PYTHON ?= python3
+VENV := .venv
+BIN := $(VENV)/bin
+STAMP := $(VENV)/.installed
+
+.PHONY: install up test test-deps lint bench clean
+
+install: $(STAMP)
+
+# Reinstall only when the lock or the project metadata change, so `make install` is idempotent.
+$(STAMP): requirements.lock pyproject.toml
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --require-hashes --no-deps -r requirements.lock
+	$(BIN)/python -m pip install --quiet --no-deps --no-build-isolation -e .
+	touch $(STAMP)
+
+up: install
+	$(BIN)/skydeck launch
+
+# System packages the tests drive for real: Debian's Chromium (browser tests) and the
+# docker-compose tool (validates docker-compose.yml without an engine).
+test-deps:
+	@command -v chromium >/dev/null && command -v docker-compose >/dev/null || \
+		{ apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium docker-compose >/dev/null; }
+
+test: install test-deps
+	$(BIN)/python -m pytest -q
+
+lint: install
+	$(BIN)/ruff check .
+	$(BIN)/mypy services shared_models sim_server
+
+bench: install
+	$(BIN)/skydeck bench --out bench.json
+
+clean:
+	rm -rf $(VENV) .pytest_cache build *.egg-info

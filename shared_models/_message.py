@@ -1,0 +1,111 @@
+"""The base of every Skydeck message and service type.
+
+A message is a pydantic v2 model whose field names, defaults and JSON match the ROS message of
+the same name, so ROS code reads the same: ``Point(x=1.0, y=2.0, z=0.0)``. Each concrete type
+declares its ROS name in ``__ros_type__`` (``"geometry_msgs/msg/Point"``), which registers it
+for lookup by name (:func:`shared_models.get_interface`).
+
+Field types carry their ROS primitive through ``Annotated`` aliases (``Float64``, ``UInt32``...),
+which is what ``skydeck interface show`` prints.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Annotated, Any, ClassVar
+
+from pydantic import BaseModel, ConfigDict, Field
+
+__all__ = [
+    "Bool",
+    "Byte",
+    "Float32",
+    "Float64",
+    "Int8",
+    "Int32",
+    "Int64",
+    "Message",
+    "RosPrimitive",
+    "ServiceType",
+    "String",
+    "UInt8",
+    "UInt32",
+    "all_interfaces",
+]
+
+
+@dataclass(frozen=True)
+class RosPrimitive:
+    """Marks a field with the ROS primitive type it stands for (``float64``, ``uint32``...)."""
+
+    name: str
+
+
+Bool = Annotated[bool, RosPrimitive("bool")]
+Byte = Annotated[int, RosPrimitive("byte"), Field(ge=0, le=0xFF)]
+UInt8 = Annotated[int, RosPrimitive("uint8"), Field(ge=0, le=0xFF)]
+Int8 = Annotated[int, RosPrimitive("int8"), Field(ge=-(2**7), le=2**7 - 1)]
+Int32 = Annotated[int, RosPrimitive("int32"), Field(ge=-(2**31), le=2**31 - 1)]
+UInt32 = Annotated[int, RosPrimitive("uint32"), Field(ge=0, le=2**32 - 1)]
+Int64 = Annotated[int, RosPrimitive("int64"), Field(ge=-(2**63), le=2**63 - 1)]
+Float32 = Annotated[float, RosPrimitive("float32")]
+Float64 = Annotated[float, RosPrimitive("float64")]
+String = Annotated[str, RosPrimitive("string")]
+
+# Every registered interface by its full ROS name ("pkg/msg/Name" or "pkg/srv/Name").
+_INTERFACES: dict[str, type[Message] | type[ServiceType]] = {}
+
+
+def _register(ros_type: str, cls: type[Message] | type[ServiceType]) -> None:
+    existing = _INTERFACES.get(ros_type)
+    if existing is not None and existing is not cls:
+        raise TypeError(f"interface {ros_type} is defined twice ({existing!r} and {cls!r})")
+    _INTERFACES[ros_type] = cls
+
+
+def all_interfaces() -> dict[str, type[Message] | type[ServiceType]]:
+    """Every registered message and service type by its full ROS name."""
+    return dict(_INTERFACES)
+
+
+class Message(BaseModel):
+    """Base class of every message; subclasses set ``__ros_type__`` to register themselves.
+
+    Non-finite floats are refused everywhere (JSON cannot carry them and no Skydeck position,
+    setpoint or rate means anything as NaN), and unknown fields are refused so a typo in a
+    published frame is reported instead of silently dropped.
+    """
+
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
+
+    __ros_type__: ClassVar[str] = ""
+    # The comment block `interface show` prints above the fields, as in the .msg file.
+    __ros_comment__: ClassVar[str] = ""
+    # Named constants of the .msg file (`uint8 FRAME_LOCAL_NED=1`), printed by `interface show`.
+    __ros_constants__: ClassVar[tuple[str, ...]] = ()
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if cls.__dict__.get("__ros_type__"):
+            _register(cls.__ros_type__, cls)
+
+
+class ServiceType:
+    """A ROS service: a ``Request`` and a ``Response`` message under one name.
+
+    Subclasses set ``__ros_type__`` (``"std_srvs/srv/Trigger"``), ``Request`` and ``Response``;
+    rclpy's ``Trigger.Request()`` and rospy's ``TriggerResponse()`` both read the same.
+    """
+
+    __ros_type__: ClassVar[str] = ""
+    __ros_comment__: ClassVar[str] = ""
+    Request: ClassVar[type[Message]]
+    Response: ClassVar[type[Message]]
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if cls.__dict__.get("__ros_type__"):
+            for part in ("Request", "Response"):
+                if not (isinstance(getattr(cls, part, None), type) and issubclass(getattr(cls, part), Message)):
+                    raise TypeError(f"service {cls.__ros_type__} needs a {part} message class")
+            _register(cls.__ros_type__, cls)
