@@ -1,0 +1,1 @@
+"""Skydeck services: the node runtime, the core, the CLI and the workshop nodes."""

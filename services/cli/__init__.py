@@ -1,0 +1,1 @@
+"""The ``skydeck`` command line: ROS's verbs (topic, service, node, interface, run, launch)."""

@@ -1,0 +1,70 @@
+"""Talking to the core from the CLI: its URL, JSON requests, and readable errors."""
+
+from __future__ import annotations
+
+import os
+from typing import Any
+
+import httpx
+
+from services.cli.errors import CliError
+from services.runtime.settings import DEFAULT_CORE_URL
+
+__all__ = ["auth_headers", "core_url", "get_json", "post_json", "ws_url"]
+
+
+def core_url() -> str:
+    """The core's URL: ``SKYDECK_CORE_URL`` or the default ``http://127.0.0.1:8000``."""
+    return os.environ.get("SKYDECK_CORE_URL", DEFAULT_CORE_URL).rstrip("/")
+
+
+def auth_headers() -> dict[str, str]:
+    """The Authorization header when ``SKYDECK_TOKEN`` is set."""
+    token = os.environ.get("SKYDECK_TOKEN", "")
+    return {"Authorization": f"Bearer {token}"} if token else {}
+
+
+def ws_url(path: str, **query: Any) -> str:
+    """The core's WebSocket URL for ``path`` with query options (None values left out)."""
+    base = core_url()
+    scheme, _, rest = base.partition("://")
+    params = "&".join(f"{k}={v}" for k, v in query.items() if v is not None)
+    return f"{'wss' if scheme == 'https' else 'ws'}://{rest}{path}" + (f"?{params}" if params else "")
+
+
+def _unreachable(error: Exception) -> CliError:
+    return CliError(
+        f"cannot reach the core at {core_url()} ({type(error).__name__}): is it running? "
+        "start it with `skydeck core` (or `make up`), or set SKYDECK_CORE_URL"
+    )
+
+
+def get_json(path: str, *, missing: str | None = None) -> Any:
+    """GET ``path`` on the core; a 404 raises CliError(``missing``) when given."""
+    try:
+        reply = httpx.get(core_url() + path, headers=auth_headers(), timeout=5.0)
+    except httpx.HTTPError as error:
+        raise _unreachable(error) from None
+    if reply.status_code == 404 and missing is not None:
+        raise CliError(missing)
+    if reply.status_code != 200:
+        raise CliError(f"the core answered {reply.status_code} for {path}: {_detail(reply)}")
+    return reply.json()
+
+
+def post_json(path: str, body: Any, *, timeout_s: float) -> httpx.Response:
+    """POST ``body`` as JSON to ``path`` on the core and return the reply, whatever its status."""
+    try:
+        return httpx.post(core_url() + path, json=body, headers=auth_headers(), timeout=timeout_s)
+    except httpx.TimeoutException:
+        raise CliError(f"no answer from {path} within {timeout_s:g} s (--timeout to wait longer)") from None
+    except httpx.HTTPError as error:
+        raise _unreachable(error) from None
+
+
+def _detail(reply: httpx.Response) -> str:
+    try:
+        detail = reply.json().get("detail", reply.text)
+    except ValueError:
+        return reply.text.strip()
+    return detail if isinstance(detail, str) else str(detail)

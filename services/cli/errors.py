@@ -1,0 +1,9 @@
+"""The CLI's one error type: printed as one line, exit status 1, never a traceback."""
+
+from __future__ import annotations
+
+__all__ = ["CliError"]
+
+
+class CliError(Exception):
+    """A problem the user can fix; the message says what happened and what to do."""

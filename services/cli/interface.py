@@ -1,0 +1,54 @@
+"""``skydeck interface list | show | proto`` (ros2 interface)."""
+
+from __future__ import annotations
+
+import argparse
+
+from shared_models import Message, UnknownInterfaceError, get_interface, interface_names, interface_text
+from services.cli.errors import CliError
+from services.cli.formatting import to_yaml
+
+__all__ = ["add_parser"]
+
+
+def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    interface = subparsers.add_parser("interface", help="list and show message and service types")
+    verbs = interface.add_subparsers(dest="verb", required=True, metavar="VERB")
+    p = verbs.add_parser("list", help="list every known type")
+    kind = p.add_mutually_exclusive_group()
+    kind.add_argument("-m", "--only-msgs", action="store_true", help="only message types")
+    kind.add_argument("-s", "--only-srvs", action="store_true", help="only service types")
+    p.set_defaults(func=_list)
+    p = verbs.add_parser("show", help="show a type's fields, nested types indented")
+    p.add_argument("type", help="e.g. geometry_msgs/msg/PointStamped")
+    p.set_defaults(func=_show)
+    p = verbs.add_parser("proto", help="a default instance of a message type, as YAML to edit")
+    p.add_argument("type")
+    p.set_defaults(func=_proto)
+
+
+def _lookup(name: str):  # type: ignore[no-untyped-def]
+    try:
+        return get_interface(name)
+    except UnknownInterfaceError as error:
+        raise CliError(str(error).splitlines()[0]) from None
+
+
+def _list(args: argparse.Namespace) -> int:
+    kind = "msg" if args.only_msgs else "srv" if args.only_srvs else None
+    for name in interface_names(kind):
+        print(name)
+    return 0
+
+
+def _show(args: argparse.Namespace) -> int:
+    print(interface_text(_lookup(args.type)))
+    return 0
+
+
+def _proto(args: argparse.Namespace) -> int:
+    cls = _lookup(args.type)
+    if not issubclass(cls, Message):
+        cls = cls.Request
+    print(to_yaml(cls().model_dump(mode="json")))
+    return 0

@@ -1,0 +1,53 @@
+"""``skydeck``: the entry point; errors are one line and a non-zero exit, never a traceback."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from services.cli import interface, node, run, service, topic
+from services.cli.errors import CliError
+
+__all__ = ["build_parser", "main"]
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The whole command line, one subparser per verb group."""
+    parser = argparse.ArgumentParser(
+        prog="skydeck",
+        description="ROS-style robot software over HTTP and WebSocket. The core is found at SKYDECK_CORE_URL.",
+    )
+    subparsers = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    run.add_parsers(subparsers)
+    for module in (topic, service, node, interface):
+        module.add_parser(subparsers)
+    _add_optional(subparsers)
+    return parser
+
+
+def _add_optional(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    # Verbs whose modules pull in heavier dependencies register themselves here.
+    from services.cli import launch
+
+    launch.add_parser(subparsers)
+    try:
+        from services.cli import bench
+    except ImportError:
+        return
+    bench.add_parser(subparsers)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run one command; returns the exit status."""
+    parser = build_parser()
+    args, extra = parser.parse_known_args(argv)
+    if extra and args.command != "run" and args.command != "core":
+        parser.error(f"unrecognized arguments: {' '.join(extra)}")
+    args.extra = extra
+    try:
+        return int(args.func(args) or 0)
+    except CliError as error:
+        print(f"skydeck: error: {error}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        return 130

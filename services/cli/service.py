@@ -1,0 +1,79 @@
+"""``skydeck service list | info | type | call`` (rosservice / ros2 service)."""
+
+from __future__ import annotations
+
+import argparse
+
+from shared_models import InvalidNameError, resolve_name
+from services.cli.core_client import get_json, post_json
+from services.cli.errors import CliError
+from services.cli.formatting import parse_data, to_yaml
+
+__all__ = ["add_parser"]
+
+
+def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    service = subparsers.add_parser("service", help="list, inspect and call services")
+    verbs = service.add_subparsers(dest="verb", required=True, metavar="VERB")
+
+    p = verbs.add_parser("list", help="list the services of the running system")
+    p.add_argument("-t", "--show-types", action="store_true", help="show each service's type")
+    p.set_defaults(func=_list)
+
+    p = verbs.add_parser("info", help="node, URL and type of a service")
+    p.add_argument("service")
+    p.set_defaults(func=_info)
+
+    p = verbs.add_parser("type", help="the type of a service")
+    p.add_argument("service")
+    p.set_defaults(func=_type)
+
+    p = verbs.add_parser("call", help="call a service (DATA as YAML or JSON, default {})")
+    p.add_argument("service")
+    p.add_argument("data", nargs="?", default="{}", help='e.g. "{x: 5.0, y: -3.0}"')
+    p.add_argument("--timeout", type=float, default=15.0, help="seconds to wait for the answer (default 15)")
+    p.set_defaults(func=_call)
+
+
+def _name(text: str) -> str:
+    try:
+        return resolve_name(text)
+    except InvalidNameError as error:
+        raise CliError(str(error)) from None
+
+
+def _lookup(name: str) -> dict[str, str]:
+    return get_json(f"/api/services{name}", missing=f"unknown service {name}: see `skydeck service list`")  # type: ignore[no-any-return]
+
+
+def _list(args: argparse.Namespace) -> int:
+    for service in get_json("/api/graph")["services"]:
+        print(service["name"] + (f" [{service['type']}]" if args.show_types else ""))
+    return 0
+
+
+def _info(args: argparse.Namespace) -> int:
+    service = _lookup(_name(args.service))
+    print(f"Node: {service['node']}\nURI: {service['url']}{service['name']}\nType: {service['type']}")
+    return 0
+
+
+def _type(args: argparse.Namespace) -> int:
+    print(_lookup(_name(args.service))["type"])
+    return 0
+
+
+def _call(args: argparse.Namespace) -> int:
+    name = _name(args.service)
+    reply = post_json(name, parse_data(args.data), timeout_s=args.timeout)
+    if reply.status_code != 200:
+        try:
+            detail = reply.json().get("detail")
+        except ValueError:
+            detail = reply.text
+        if isinstance(detail, list):  # FastAPI's 422: name the first bad field
+            first = detail[0]
+            detail = f"{'.'.join(str(p) for p in first.get('loc', [])[1:]) or 'body'}: {first.get('msg')}"
+        raise CliError(f"{name}: {detail} (HTTP {reply.status_code})")
+    print(to_yaml(reply.json()))
+    return 0

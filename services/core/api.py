@@ -1,0 +1,103 @@
+"""The core's own API under ``/api``: the registry (graph, nodes, topics, services) and types."""
+
+from __future__ import annotations
+
+from typing import Annotated, Any
+
+from fastapi import APIRouter, Depends, HTTPException, Request
+
+from shared_models import (
+    Message,
+    ServiceType,
+    UnknownInterfaceError,
+    get_interface,
+    interface_names,
+    interface_text,
+)
+from services.core.registry import Registry
+
+__all__ = ["router"]
+
+router = APIRouter(prefix="/api", tags=["registry"])
+
+
+def _registry(request: Request) -> Registry:
+    return request.app.state.registry  # type: ignore[no-any-return]
+
+
+RegistryDep = Annotated[Registry, Depends(_registry)]
+
+
+@router.get("/graph")
+async def graph(registry: RegistryDep) -> dict[str, Any]:
+    """Nodes, topics (type, publishers, subscribers, rate) and services of the running system."""
+    return registry.graph()
+
+
+@router.get("/nodes/{name:path}")
+async def node_info(name: str, registry: RegistryDep) -> dict[str, Any]:
+    """One node: URL, pid, publications, subscriptions and services (`rosnode info`)."""
+    node_name = "/" + name.strip("/")
+    for node in registry.graph()["nodes"]:
+        if node["name"] == node_name:
+            return node  # type: ignore[no-any-return]
+    raise HTTPException(404, f"no node {node_name}: see `skydeck node list`")
+
+
+@router.get("/topics/{name:path}")
+async def topic_info(name: str, registry: RegistryDep) -> dict[str, Any]:
+    """One topic: type, publishers, subscribers and rate (`rostopic info`)."""
+    topic_name = "/" + name.strip("/")
+    for topic in registry.graph()["topics"]:
+        if topic["name"] == topic_name:
+            return topic  # type: ignore[no-any-return]
+    raise HTTPException(404, f"no topic {topic_name}: see `skydeck topic list`")
+
+
+@router.get("/services/{name:path}")
+async def service_info(name: str, registry: RegistryDep) -> dict[str, Any]:
+    """One service: type, hosting node and its URL (`rosservice info`)."""
+    service_name = "/" + name.strip("/")
+    found = registry.service(service_name)
+    if found is None:
+        raise HTTPException(404, f"no service {service_name}: see `skydeck service list`")
+    entity, record = found
+    return {"name": entity.name, "type": entity.type, "node": record.description.name, "url": record.description.url}
+
+
+@router.get("/interfaces")
+async def interfaces() -> dict[str, Any]:
+    """Every message and service type the core knows (`ros2 interface list`)."""
+    return {
+        "interfaces": [
+            {"name": name, "kind": name.split("/")[1]} for name in interface_names()
+        ]
+    }
+
+
+@router.get("/interfaces/{name:path}")
+async def interface(name: str) -> dict[str, Any]:
+    """One type: its `interface show` text, JSON schema and default value."""
+    try:
+        cls = get_interface(name)
+    except UnknownInterfaceError as error:
+        raise HTTPException(404, str(error)) from None
+    if isinstance(cls, type) and issubclass(cls, ServiceType):
+        return {
+            "name": cls.__ros_type__,
+            "kind": "srv",
+            "text": interface_text(cls),
+            "schema": {"request": cls.Request.model_json_schema(), "response": cls.Response.model_json_schema()},
+            "default": {
+                "request": cls.Request().model_dump(mode="json"),
+                "response": cls.Response().model_dump(mode="json"),
+            },
+        }
+    message: type[Message] = cls
+    return {
+        "name": message.__ros_type__,
+        "kind": "msg",
+        "text": interface_text(message),
+        "schema": message.model_json_schema(),
+        "default": message().model_dump(mode="json"),
+    }

@@ -1,0 +1,128 @@
+"""The core's application: registry, gateway, dashboard and one OpenAPI page for the system.
+
+    app = create_app(CoreSettings(port=8000))
+
+Routes, most specific first: ``/api/...`` (registry), ``/docs`` and ``/openapi.json``,
+``/static/...`` and ``/`` (dashboard), ``/health``; every other path is a topic or service name
+answered by the gateway.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+from collections.abc import AsyncIterator
+from pathlib import Path
+from typing import Any
+
+import httpx
+from fastapi import FastAPI, Request, WebSocket
+from fastapi.openapi.docs import get_swagger_ui_html
+from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, RedirectResponse, Response
+from fastapi.staticfiles import StaticFiles
+from starlette.routing import Route, WebSocketRoute
+
+from services.core.api import router as api_router
+from services.core.gateway import Gateway
+from services.core.openapi import aggregate_openapi
+from services.core.registry import Registry
+from services.core.relay import GATEWAY_PATH, Relays
+from services.core.sessions import serve_session
+from services.core.settings import CoreSettings
+from services.runtime.limits import BodySizeLimit
+
+__all__ = ["create_app"]
+
+_WEB_UI = Path(__file__).resolve().parents[2] / "web_ui"
+_STATIC_DIR = _WEB_UI / "static"
+_SWAGGER_DIR = _WEB_UI / "vendor" / "node_modules" / "swagger-ui-dist"
+
+
+def create_app(settings: CoreSettings | None = None) -> FastAPI:
+    """The core as an ASGI app; ``settings.advertise_url`` (or host/port) is where nodes reach it."""
+    settings = settings or CoreSettings()
+    registry = Registry()
+    gateway_url = settings.advertise_url or f"http://{settings.host}:{settings.port}"
+
+    @contextlib.asynccontextmanager
+    async def lifespan(app: FastAPI) -> AsyncIterator[None]:
+        async with httpx.AsyncClient() as http:
+            relays = Relays(registry, settings, gateway_url)
+            app.state.http = http
+            app.state.relays = relays
+            app.state.gateway = Gateway(registry, relays, settings, http)
+            try:
+                yield
+            finally:
+                relays.close()
+
+    app = FastAPI(
+        title="Skydeck",
+        description=(
+            "Every command of the running system: each service of each live node is a POST at its "
+            "name. Topics: GET the latest message, or open a WebSocket at the same path for the stream."
+        ),
+        version="0.1.0",
+        docs_url=None,
+        redoc_url=None,
+        openapi_url=None,
+        lifespan=lifespan,
+    )
+    app.state.registry = registry
+    app.state.settings = settings
+    app.add_middleware(BodySizeLimit, max_bytes=settings.max_message_bytes)
+    app.include_router(api_router)
+
+    @app.get("/health", tags=["core"])
+    async def health() -> dict[str, Any]:
+        """Liveness of the core."""
+        return {"status": "ok", "node": "/skydeck_core", "pid": os.getpid(), "nodes": len(registry.nodes)}
+
+    @app.websocket("/api/session")
+    async def session(websocket: WebSocket) -> None:
+        await serve_session(websocket, registry)
+
+    @app.websocket(GATEWAY_PATH + "/{topic:path}")
+    async def gateway_publication(websocket: WebSocket) -> None:
+        await app.state.gateway.handle_gateway_publication(websocket)
+
+    @app.get("/openapi.json", include_in_schema=False)
+    async def openapi(request: Request) -> JSONResponse:
+        return JSONResponse(await aggregate_openapi(app.openapi(), registry, request.app.state.http))
+
+    @app.get("/docs", include_in_schema=False)
+    async def docs() -> HTMLResponse:
+        return get_swagger_ui_html(
+            openapi_url="/openapi.json",
+            title="Skydeck — every command",
+            swagger_js_url="/static/vendor/swagger-ui/swagger-ui-bundle.js",
+            swagger_css_url="/static/vendor/swagger-ui/swagger-ui.css",
+            swagger_favicon_url="/static/vendor/swagger-ui/favicon-32x32.png",
+        )
+
+    @app.get("/redoc", include_in_schema=False)
+    async def redoc() -> RedirectResponse:
+        return RedirectResponse("/docs")
+
+    if _SWAGGER_DIR.is_dir():
+        app.mount("/static/vendor/swagger-ui", StaticFiles(directory=_SWAGGER_DIR), name="swagger-ui")
+    if _STATIC_DIR.is_dir():
+        app.mount("/static", StaticFiles(directory=_STATIC_DIR), name="static")
+
+    @app.get("/", include_in_schema=False)
+    async def dashboard() -> Response:
+        index = _STATIC_DIR / "index.html"
+        if not index.is_file():
+            return HTMLResponse("<p>The dashboard is not installed; the API is at <a href='/docs'>/docs</a>.</p>")
+        return FileResponse(index)
+
+    async def gateway_http(request: Request) -> Response:
+        return await request.app.state.gateway.handle_http(request)  # type: ignore[no-any-return]
+
+    async def gateway_stream(websocket: WebSocket) -> None:
+        await websocket.app.state.gateway.handle_stream(websocket)
+
+    # Last: every remaining path is a name.
+    app.router.routes.append(Route("/{name:path}", gateway_http, methods=["GET", "POST"], include_in_schema=False))
+    app.router.routes.append(WebSocketRoute("/{name:path}", gateway_stream))
+    return app

@@ -1,0 +1,49 @@
+"""One OpenAPI document for the whole system: the core's own API plus every live node's
+services and topics, so ``/docs`` is the one page where a user sees every command."""
+
+from __future__ import annotations
+
+import asyncio
+import copy
+from typing import Any
+
+import httpx
+
+from services.core.registry import NodeRecord, Registry
+from services.core.relay import GATEWAY_NODE
+
+__all__ = ["aggregate_openapi"]
+
+_FETCH_TIMEOUT_S = 1.5
+
+
+async def aggregate_openapi(core_schema: dict[str, Any], registry: Registry, http: httpx.AsyncClient) -> dict[str, Any]:
+    """The core's schema extended with each live node's service and topic paths (tagged by node)."""
+    schema = copy.deepcopy(core_schema)
+    paths: dict[str, Any] = schema.setdefault("paths", {})
+    components: dict[str, Any] = schema.setdefault("components", {}).setdefault("schemas", {})
+    records = [r for name, r in sorted(registry.nodes.items()) if name != GATEWAY_NODE]
+    node_schemas = await asyncio.gather(*(_fetch(http, record) for record in records))
+    for record, node_schema in zip(records, node_schemas, strict=True):
+        if node_schema is None:
+            continue
+        description = record.description
+        names = {e.name for e in description.services} | {e.name for e in description.publications}
+        for path, item in node_schema.get("paths", {}).items():
+            if path not in names:
+                continue
+            for operation in item.values():
+                operation["tags"] = [f"node {description.name}"]
+                operation["operationId"] = f"{operation.get('operationId', path)}__{description.name.strip('/')}"
+            paths[path] = item
+        components.update(node_schema.get("components", {}).get("schemas", {}))
+    return schema
+
+
+async def _fetch(http: httpx.AsyncClient, record: NodeRecord) -> dict[str, Any] | None:
+    try:
+        reply = await http.get(record.description.url.rstrip("/") + "/openapi.json", timeout=_FETCH_TIMEOUT_S)
+        reply.raise_for_status()
+        return reply.json()  # type: ignore[no-any-return]
+    except (httpx.HTTPError, ValueError):
+        return None  # a node that cannot answer now is left out of this page, not an error

@@ -1,0 +1,159 @@
+"""A node's HTTP/WebSocket face: ``/health``, one stream + GET per topic, one POST per service.
+
+Routes are added as the node creates entities, before or after it starts serving, so the node's
+``/docs`` always shows what it offers. Errors become HTTP codes and close codes here, at the edge.
+"""
+
+from __future__ import annotations
+
+import inspect
+import logging
+from collections.abc import Awaitable, Callable
+from typing import TYPE_CHECKING, Annotated, Any
+
+from fastapi import Body, FastAPI
+from fastapi.responses import JSONResponse, Response
+from starlette.requests import Request as HTTPRequest
+from starlette.websockets import WebSocket
+
+from shared_models import Message
+from services.runtime.auth import token_matches
+from services.runtime.endpoint import TopicEndpoint
+from services.runtime.limits import BodySizeLimit
+from services.runtime.outbox import Outbox
+from services.runtime.service import Service, ServiceHandlerError
+from services.runtime.stream import (
+    CLOSE_BAD_OPTION,
+    FrameRejected,
+    StreamOptions,
+    close_with,
+    parse_frame,
+    serve_stream,
+)
+
+if TYPE_CHECKING:
+    from services.runtime.node import Node
+
+__all__ = ["NodeApp"]
+
+NOT_AUTHORISED = "publishing and service calls need the token: Authorization: Bearer TOKEN or ?token=TOKEN"
+
+
+class NodeApp:
+    """The FastAPI application of one node."""
+
+    def __init__(self, node: Node) -> None:
+        self._node = node
+        self._logger = logging.getLogger(f"skydeck.node.{node.get_name().lstrip('/')}")
+        self.fastapi = FastAPI(
+            title=f"Skydeck node {node.get_name()}",
+            description="Topics (GET the latest, WebSocket for the stream) and services (POST) of this node.",
+            version="0.1.0",
+            redoc_url=None,
+        )
+        self.fastapi.add_middleware(BodySizeLimit, max_bytes=node.settings.max_message_bytes)
+        self.fastapi.add_api_route("/health", self._health, methods=["GET"], tags=["node"], summary="Liveness")
+
+    async def _health(self) -> dict[str, Any]:
+        return {"status": "ok", "node": self._node.get_name(), "pid": self._node.pid}
+
+    # -- topics -------------------------------------------------------------------------------
+
+    def add_topic(self, endpoint: TopicEndpoint) -> None:
+        """Serve ``endpoint`` at its name: GET for the latest message, WebSocket for the stream."""
+
+        async def latest() -> Response:
+            if endpoint.latest_frame is None:
+                return JSONResponse(
+                    {"detail": f"no message on {endpoint.name} yet: is its publisher running?"}, status_code=404
+                )
+            return Response(endpoint.latest_frame, media_type="application/json")
+
+        self.fastapi.add_api_route(
+            endpoint.name,
+            latest,
+            methods=["GET"],
+            tags=["topics"],
+            summary=f"Latest {endpoint.type_name}",
+            description=f"The latest message on topic {endpoint.name}; `ws://` the same path for the stream.",
+            responses={200: {"model": endpoint.msg_type}, 404: {"description": "No message yet"}},
+            name=f"topic:{endpoint.name}",
+        )
+        self.fastapi.add_api_websocket_route(endpoint.name, self._stream_handler(endpoint))
+        self.fastapi.openapi_schema = None
+
+    def _stream_handler(self, endpoint: TopicEndpoint) -> Callable[[WebSocket], Awaitable[None]]:
+        node = self._node
+
+        async def stream(websocket: WebSocket) -> None:
+            await websocket.accept()
+            try:
+                options = StreamOptions.from_query(dict(websocket.query_params))
+            except FrameRejected as rejected:
+                await close_with(websocket, rejected.code, rejected.reason)
+                return
+            may_publish = token_matches(node.settings.token, websocket)
+
+            def on_frame(text: str) -> None:
+                if not may_publish:
+                    raise FrameRejected(CLOSE_BAD_OPTION, NOT_AUTHORISED)
+                msg = parse_frame(endpoint.msg_type, endpoint.type_name, text)
+                node._inject(endpoint, msg)
+
+            outbox = Outbox(1 if options.rate_hz else options.queue)
+            endpoint.outboxes.add(outbox)
+            try:
+                await serve_stream(
+                    websocket,
+                    outbox,
+                    options=options,
+                    initial_frame=endpoint.latest_frame if endpoint.latched else None,
+                    on_frame=on_frame,
+                )
+            finally:
+                endpoint.outboxes.discard(outbox)
+
+        return stream
+
+    # -- services -----------------------------------------------------------------------------
+
+    def add_service(self, service: Service) -> None:
+        """Serve ``service`` as a POST at its name, typed by its Request and Response."""
+        request_type: type[Message] = service.srv_type.Request
+        response_type: type[Message] = service.srv_type.Response
+        node = self._node
+        logger = self._logger
+
+        async def call(http_request: Any, request: Any = None) -> Any:
+            if not token_matches(node.settings.token, http_request):
+                return JSONResponse({"detail": NOT_AUTHORISED}, status_code=401)
+            try:
+                return await service.handle(request if request is not None else request_type(), logger)
+            except ServiceHandlerError as error:
+                return JSONResponse({"detail": str(error)}, status_code=500)
+
+        # FastAPI reads types from the signature: give it this service's own request model, with
+        # an empty body meaning the default request (`rosservice call /x` with no arguments).
+        call.__signature__ = inspect.Signature(  # type: ignore[attr-defined]
+            [
+                inspect.Parameter("http_request", inspect.Parameter.POSITIONAL_OR_KEYWORD, annotation=HTTPRequest),
+                inspect.Parameter(
+                    "request",
+                    inspect.Parameter.POSITIONAL_OR_KEYWORD,
+                    default=None,
+                    annotation=Annotated[request_type | None, Body()],
+                ),
+            ]
+        )
+        self.fastapi.add_api_route(
+            service.name,
+            call,
+            methods=["POST"],
+            response_model=response_type,
+            tags=["services"],
+            summary=f"{service.name} ({service.srv_type.__ros_type__})",
+            description=(service.srv_type.__doc__ or "").strip().splitlines()[0] if service.srv_type.__doc__ else "",
+            name=f"service:{service.name}",
+            responses={401: {"description": "Token required"}, 500: {"description": "The handler failed"}},
+        )
+        self.fastapi.openapi_schema = None

@@ -1,0 +1,85 @@
+"""A subscriber's connection to one remote publisher, kept up until it is no longer wanted.
+
+The link reconnects by itself (short backoff) when the publisher goes away and comes back,
+which is how node-to-node streams survive a publisher restart or a missing core.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+from collections.abc import Callable
+
+from websockets.asyncio.client import connect
+from websockets.exceptions import InvalidHandshake, InvalidURI, WebSocketException
+
+__all__ = ["PublisherLink", "stream_url"]
+
+_BACKOFF_FIRST_S = 0.05
+_BACKOFF_MAX_S = 1.0
+
+logger = logging.getLogger("skydeck.runtime")
+
+
+def stream_url(base_url: str, topic: str, **query: object) -> str:
+    """The WebSocket URL of ``topic`` on the node at ``base_url`` (``http://h:p`` -> ``ws://``)."""
+    scheme, _, rest = base_url.rstrip("/").partition("://")
+    ws_scheme = "wss" if scheme == "https" else "ws"
+    params = "&".join(f"{key}={value}" for key, value in query.items() if value is not None)
+    return f"{ws_scheme}://{rest}{topic}" + (f"?{params}" if params else "")
+
+
+class PublisherLink:
+    """Reads one publisher's stream of ``topic`` and hands every text frame to ``on_frame``."""
+
+    def __init__(
+        self,
+        publisher_url: str,
+        topic: str,
+        on_frame: Callable[[str], None],
+        *,
+        queue_size: int,
+        max_message_bytes: int,
+        ping_interval_s: float,
+        ping_timeout_s: float,
+        token: str = "",
+    ) -> None:
+        self.publisher_url = publisher_url
+        self.topic = topic
+        self.url = stream_url(publisher_url, topic, queue=queue_size)
+        self._on_frame = on_frame
+        self._max_message_bytes = max_message_bytes
+        self._ping_interval_s = ping_interval_s
+        self._ping_timeout_s = ping_timeout_s
+        self._headers = {"Authorization": f"Bearer {token}"} if token else None
+        self.connected = asyncio.Event()
+
+    async def run(self) -> None:
+        """Connect, read, and reconnect with backoff, until cancelled."""
+        backoff_s = _BACKOFF_FIRST_S
+        while True:
+            try:
+                async with connect(
+                    self.url,
+                    additional_headers=self._headers,
+                    compression=None,
+                    max_size=self._max_message_bytes,
+                    open_timeout=2.0,
+                    ping_interval=self._ping_interval_s,
+                    ping_timeout=self._ping_timeout_s,
+                    close_timeout=1.0,
+                ) as websocket:
+                    self.connected.set()
+                    backoff_s = _BACKOFF_FIRST_S
+                    on_frame = self._on_frame
+                    async for frame in websocket:
+                        if isinstance(frame, str):
+                            on_frame(frame)
+            except (OSError, TimeoutError, InvalidHandshake, WebSocketException) as error:
+                if isinstance(error, InvalidURI):
+                    logger.error("cannot subscribe to %s at %s: %s", self.topic, self.url, error)
+                    return
+                logger.debug("link to %s lost: %s", self.url, error)
+            self.connected.clear()
+            await asyncio.sleep(backoff_s)
+            backoff_s = min(backoff_s * 2, _BACKOFF_MAX_S)

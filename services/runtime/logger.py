@@ -1,0 +1,75 @@
+"""A node's logger: Python ``logging`` plus a ``rcl_interfaces/msg/Log`` on ``/rosout``."""
+
+from __future__ import annotations
+
+import logging
+import sys
+from collections.abc import Callable
+from typing import Any
+
+from shared_models.builtin_interfaces import Time
+from shared_models.rcl_interfaces import Log
+
+__all__ = ["NodeLogger"]
+
+_LEVELS = {
+    Log.DEBUG: logging.DEBUG,
+    Log.INFO: logging.INFO,
+    Log.WARN: logging.WARNING,
+    Log.ERROR: logging.ERROR,
+    Log.FATAL: logging.CRITICAL,
+}
+
+
+class NodeLogger:
+    """What ``node.get_logger()`` returns: ``info``, ``warn``, ``error``... as in rclpy and rospy.
+
+    Messages may use %-style arguments as rospy's ``loginfo("got %s", x)`` does.
+    """
+
+    def __init__(self, node_name: str, stamp: Callable[[], Time], publish: Callable[[Log], None]) -> None:
+        self.name = node_name
+        self._logger = logging.getLogger(f"skydeck.node.{node_name.lstrip('/')}")
+        self._stamp = stamp
+        self._publish = publish
+
+    @property
+    def logger(self) -> logging.Logger:
+        """The underlying ``logging`` logger (for ``exception()`` and handlers)."""
+        return self._logger
+
+    def debug(self, msg: str, *args: Any) -> None:
+        self._log(Log.DEBUG, msg, args)
+
+    def info(self, msg: str, *args: Any) -> None:
+        self._log(Log.INFO, msg, args)
+
+    def warning(self, msg: str, *args: Any) -> None:
+        self._log(Log.WARN, msg, args)
+
+    warn = warning
+
+    def error(self, msg: str, *args: Any) -> None:
+        self._log(Log.ERROR, msg, args)
+
+    def fatal(self, msg: str, *args: Any) -> None:
+        self._log(Log.FATAL, msg, args)
+
+    def _log(self, level: int, msg: str, args: tuple[Any, ...]) -> None:
+        python_level = _LEVELS[level]
+        if not self._logger.isEnabledFor(python_level):
+            return
+        text = str(msg) % args if args else str(msg)
+        caller = sys._getframe(2)
+        self._logger.log(python_level, "%s", text)
+        self._publish(
+            Log(
+                stamp=self._stamp(),
+                level=level,
+                name=self.name,
+                msg=text,
+                file=caller.f_code.co_filename,
+                function=caller.f_code.co_name,
+                line=caller.f_lineno,
+            )
+        )

@@ -1,0 +1,96 @@
+"""The registration session between a node and the core (``ws://CORE/api/session``).
+
+One JSON object per text frame, told apart by ``op``. The node opens with ``register`` and
+sends ``update`` whenever its publications, subscriptions or services change, plus ``stats``
+once a second; the core answers ``registered`` (or ``rejected``) and pushes ``publishers`` for
+every topic the node subscribes to, at once and whenever that list changes. The session's
+life is the node's life in the registry: when it drops, the node leaves the graph.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, TypeAdapter
+
+__all__ = [
+    "CoreFrame",
+    "Entity",
+    "NodeDescription",
+    "NodeFrame",
+    "PublisherAddress",
+    "PublishersFrame",
+    "RegisteredFrame",
+    "RegisterFrame",
+    "RejectedFrame",
+    "StatsFrame",
+    "UpdateFrame",
+    "core_frames",
+    "node_frames",
+]
+
+
+class _Frame(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+class Entity(_Frame):
+    """A topic or service of a node, with its ROS type name."""
+
+    name: str
+    type: str
+    latched: bool = False
+
+
+class NodeDescription(_Frame):
+    """What a node tells the core about itself."""
+
+    name: str
+    url: str
+    pid: int
+    publications: list[Entity] = []
+    subscriptions: list[Entity] = []
+    services: list[Entity] = []
+
+
+class RegisterFrame(_Frame):
+    op: Literal["register"] = "register"
+    node: NodeDescription
+
+
+class UpdateFrame(_Frame):
+    op: Literal["update"] = "update"
+    node: NodeDescription
+
+
+class StatsFrame(_Frame):
+    op: Literal["stats"] = "stats"
+    # Messages published so far on each topic (cumulative: the core derives rates from deltas).
+    published: dict[str, int]
+
+
+class RegisteredFrame(_Frame):
+    op: Literal["registered"] = "registered"
+
+
+class RejectedFrame(_Frame):
+    op: Literal["rejected"] = "rejected"
+    reason: str
+
+
+class PublisherAddress(_Frame):
+    node: str
+    url: str
+
+
+class PublishersFrame(_Frame):
+    op: Literal["publishers"] = "publishers"
+    topic: str
+    publishers: list[PublisherAddress]
+
+
+NodeFrame = Annotated[RegisterFrame | UpdateFrame | StatsFrame, Field(discriminator="op")]
+CoreFrame = Annotated[RegisteredFrame | RejectedFrame | PublishersFrame, Field(discriminator="op")]
+
+node_frames: TypeAdapter[RegisterFrame | UpdateFrame | StatsFrame] = TypeAdapter(NodeFrame)
+core_frames: TypeAdapter[RegisteredFrame | RejectedFrame | PublishersFrame] = TypeAdapter(CoreFrame)

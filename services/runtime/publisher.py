@@ -1,0 +1,43 @@
+"""Publishers: ``node.create_publisher(PointStamped, "/my_point", 10)``."""
+
+from __future__ import annotations
+
+from typing import Generic, TypeVar
+
+from shared_models import Message
+from services.runtime.endpoint import TopicEndpoint
+
+__all__ = ["Publisher"]
+
+M = TypeVar("M", bound=Message)
+
+
+class Publisher(Generic[M]):
+    """Publishes messages of one type on one topic; made by :meth:`Node.create_publisher`."""
+
+    def __init__(self, endpoint: TopicEndpoint, msg_type: type[M], queue_size: int) -> None:
+        self._endpoint = endpoint
+        self.msg_type = msg_type
+        self.topic_name = endpoint.name
+        self.queue_size = queue_size
+        self._has_header = "header" in msg_type.model_fields
+        self._seq = 0
+
+    def publish(self, msg: M) -> None:
+        """Publish ``msg`` to every subscriber; fills ``header.seq`` when the type has a header.
+
+        Never blocks: slow readers lose their oldest messages instead of slowing this call.
+        """
+        if type(msg) is not self.msg_type:
+            raise TypeError(
+                f"publisher of {self.topic_name} takes {self.msg_type.__ros_type__} "
+                f"({self.msg_type.__name__}), not {type(msg).__name__}"
+            )
+        if self._has_header:
+            self._seq = (self._seq + 1) & 0xFFFFFFFF
+            msg.header.seq = self._seq  # type: ignore[attr-defined]
+        self._endpoint.dispatch(msg, msg.model_dump_json())
+
+    def get_subscription_count(self) -> int:
+        """How many remote readers and local subscriptions receive this topic now."""
+        return len(self._endpoint.outboxes) + len(self._endpoint.subscriptions)

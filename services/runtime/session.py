@@ -1,0 +1,152 @@
+"""A node's live session with the core: register, stay registered, come back after a restart.
+
+While the core is away the node keeps serving and its streams keep flowing; the session
+retries every half second at most, so a restarted core sees every node again within a second.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import logging
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
+from pydantic import ValidationError
+from websockets.asyncio.client import ClientConnection, connect
+from websockets.exceptions import InvalidHandshake, WebSocketException
+
+from services.runtime.links import stream_url
+from services.runtime.protocol import (
+    NodeDescription,
+    PublishersFrame,
+    RegisteredFrame,
+    RegisterFrame,
+    RejectedFrame,
+    StatsFrame,
+    UpdateFrame,
+    core_frames,
+)
+
+if TYPE_CHECKING:
+    from services.runtime.protocol import PublisherAddress
+
+__all__ = ["CoreSession", "RegistrationRejected"]
+
+_RETRY_FIRST_S = 0.1
+_RETRY_MAX_S = 0.5
+_STATS_PERIOD_S = 1.0
+
+logger = logging.getLogger("skydeck.runtime")
+
+
+class RegistrationRejected(Exception):
+    """The core refused this node (for example, a newer node took its name)."""
+
+
+class CoreSession:
+    """Keeps one node registered with the core at ``core_url``."""
+
+    def __init__(
+        self,
+        core_url: str,
+        *,
+        describe: Callable[[], NodeDescription],
+        stats: Callable[[], dict[str, int]],
+        on_publishers: Callable[[str, list[PublisherAddress]], None],
+        token: str = "",
+    ) -> None:
+        self.core_url = core_url.rstrip("/")
+        self._describe = describe
+        self._stats = stats
+        self._on_publishers = on_publishers
+        self._headers = {"Authorization": f"Bearer {token}"} if token else None
+        self._changed = asyncio.Event()
+        self.registered = asyncio.Event()
+
+    def mark_changed(self) -> None:
+        """The node's entities changed: send an update (coalesced)."""
+        self._changed.set()
+
+    async def run(self) -> None:
+        """Register and keep the session until cancelled; raises RegistrationRejected."""
+        said_waiting = False
+        registrations = 0
+        retry_s = _RETRY_FIRST_S
+        url = stream_url(self.core_url, "/api/session")
+        while True:
+            try:
+                async with connect(
+                    url,
+                    additional_headers=self._headers,
+                    compression=None,
+                    open_timeout=2.0,
+                    ping_interval=2.0,
+                    ping_timeout=4.0,
+                    close_timeout=1.0,
+                    max_size=None,
+                ) as websocket:
+                    await self._register(websocket)
+                    registrations += 1
+                    name = self._describe().name
+                    if registrations == 1:
+                        logger.info("%s registered with core at %s", name, self.core_url)
+                    else:
+                        logger.info("%s registered again with core at %s", name, self.core_url)
+                    said_waiting = False
+                    retry_s = _RETRY_FIRST_S
+                    self.registered.set()
+                    await self._serve(websocket)
+            except (OSError, TimeoutError, InvalidHandshake, WebSocketException, EOFError) as error:
+                logger.debug("core session: %s", error)
+            self.registered.clear()
+            if not said_waiting:
+                if registrations:
+                    logger.warning(
+                        "lost core at %s; streams keep flowing, registering again when it is back", self.core_url
+                    )
+                else:
+                    logger.warning("waiting for core at %s (start it with `skydeck core`)", self.core_url)
+                said_waiting = True
+            await asyncio.sleep(retry_s)
+            retry_s = min(retry_s * 2, _RETRY_MAX_S)
+
+    async def _register(self, websocket: ClientConnection) -> None:
+        self._changed.clear()
+        await websocket.send(RegisterFrame(node=self._describe()).model_dump_json())
+        reply = self._parse(await websocket.recv())
+        if isinstance(reply, RejectedFrame):
+            raise RegistrationRejected(reply.reason)
+        if isinstance(reply, PublishersFrame):  # cannot happen before "registered"; be lenient
+            self._on_publishers(reply.topic, reply.publishers)
+
+    async def _serve(self, websocket: ClientConnection) -> None:
+        sender = asyncio.create_task(self._send_updates(websocket))
+        try:
+            async for raw in websocket:
+                frame = self._parse(raw)
+                if isinstance(frame, PublishersFrame):
+                    self._on_publishers(frame.topic, frame.publishers)
+                elif isinstance(frame, RejectedFrame):
+                    raise RegistrationRejected(frame.reason)
+        finally:
+            sender.cancel()
+            with contextlib.suppress(asyncio.CancelledError):
+                await sender
+
+    async def _send_updates(self, websocket: ClientConnection) -> None:
+        while True:
+            with contextlib.suppress(TimeoutError):
+                async with asyncio.timeout(_STATS_PERIOD_S):
+                    await self._changed.wait()
+            if self._changed.is_set():
+                self._changed.clear()
+                await websocket.send(UpdateFrame(node=self._describe()).model_dump_json())
+            await websocket.send(StatsFrame(published=self._stats()).model_dump_json())
+
+    @staticmethod
+    def _parse(raw: str | bytes) -> RegisteredFrame | RejectedFrame | PublishersFrame:
+        try:
+            return core_frames.validate_json(raw)
+        except ValidationError as error:
+            raise WebSocketException(f"core sent a frame this node does not understand: {error}") from None

@@ -1,0 +1,41 @@
+"""Settings of a node process: one pydantic-settings class, read from ``SKYDECK_*`` variables."""
+
+from __future__ import annotations
+
+from pydantic import Field
+from pydantic_settings import BaseSettings, SettingsConfigDict
+
+__all__ = ["DEFAULT_CORE_URL", "MAX_MESSAGE_BYTES", "NodeSettings"]
+
+DEFAULT_CORE_URL = "http://127.0.0.1:8000"
+# Frames and bodies above this are refused (WebSocket close 1009, HTTP 413): a camera frame is
+# ~20 KiB, so 1 MiB leaves room while bounding what one client can make a node buffer.
+MAX_MESSAGE_BYTES = 1 << 20
+
+
+class NodeSettings(BaseSettings):
+    """Where a node listens, how it reaches the core, and its limits.
+
+    Every field reads from the environment with the ``SKYDECK_`` prefix (``SKYDECK_PORT=8003``);
+    ``skydeck run`` maps its flags onto the same variables.
+    """
+
+    model_config = SettingsConfigDict(env_prefix="SKYDECK_", extra="ignore")
+
+    # Where the node listens: loopback unless told otherwise (containers pass 0.0.0.0).
+    host: str = "127.0.0.1"
+    port: int = Field(default=0, ge=0, le=65535, description="0 picks a free port")
+    # The URL other processes use to reach this node; derived from host/port when empty.
+    advertise_url: str = ""
+    core_url: str = DEFAULT_CORE_URL
+    token: str = ""
+    use_sim_time: bool = False
+
+    # Limits
+    max_message_bytes: int = Field(default=MAX_MESSAGE_BYTES, gt=0)
+    # Keep-alive pings reap sockets whose peer vanished without closing.
+    ping_interval_s: float = Field(default=5.0, gt=0)
+    ping_timeout_s: float = Field(default=10.0, gt=0)
+    service_timeout_s: float = Field(default=10.0, gt=0)
+
+    log_level: str = "INFO"

@@ -1,0 +1,43 @@
+"""Running nodes: ``spin(node)`` as in rclpy, with Ctrl-C and SIGTERM stopping it cleanly."""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import logging
+import signal
+
+from services.runtime.node import Node
+
+__all__ = ["init", "shutdown", "spin"]
+
+
+def init(args: list[str] | None = None) -> None:
+    """Nothing to set up (kept so ``rclpy.init()`` ports as is); logging goes to stderr."""
+    configure_logging()
+
+
+def shutdown() -> None:
+    """Nothing to tear down (kept so ``rclpy.shutdown()`` ports as is)."""
+
+
+def configure_logging(level: str = "INFO") -> None:
+    """One line per record on stderr, unless the program configured logging itself."""
+    root = logging.getLogger()
+    if not root.handlers:
+        logging.basicConfig(level=level.upper(), format="[%(levelname)s] [%(name)s] %(message)s")
+
+
+def spin(node: Node) -> None:
+    """Run ``node`` until Ctrl-C, SIGTERM or ``node.destroy_node()``; returns when it has stopped."""
+    configure_logging(node.settings.log_level)
+    with contextlib.suppress(KeyboardInterrupt):
+        asyncio.run(_spin(node))
+
+
+async def _spin(node: Node) -> None:
+    loop = asyncio.get_running_loop()
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        with contextlib.suppress(NotImplementedError, RuntimeError):
+            loop.add_signal_handler(sig, node.destroy_node)
+    await node.run_until_stopped()
