@@ -7,7 +7,8 @@ Two inputs reach the drone, as in the workshop's fake MAVROS:
   stream is active, and counts as zero once older than STREAM_TIMEOUT_S.
 
 When the setpoint stream stops for STREAM_TIMEOUT_S (sim time) the offboard failsafe engages:
-the drone holds the position it is at. With neither input it simply holds. Bad input raises
+the drone goes back to, and holds, the position it had when the last setpoint arrived (where
+the stream stopped). With neither input it simply holds. Bad input raises
 :class:`InvalidCommand` before anything changes, so nothing non-finite reaches the physics.
 """
 
@@ -113,14 +114,27 @@ class CommandArbiter:
         self.mode = ControlMode.HOLD
         self.setpoint: tuple[float, float, float, float] | None = None
         self.setpoint_time_s = -math.inf
+        self.failsafe_hold = (x, y, z, yaw)
+        """The drone's pose when the latest setpoint arrived: held if the stream stops."""
         self.cmd_vel = (0.0, 0.0, 0.0, 0.0)
         self.cmd_vel_time_s = -math.inf
         self.reference = Reference(x=x, y=y, z=z, yaw=yaw)
 
-    def set_setpoint(self, now_s: float, x: object, y: object, z: object, yaw: object) -> None:
-        """Take a position setpoint that arrived at sim time ``now_s``."""
+    def set_setpoint(
+        self,
+        now_s: float,
+        x: object,
+        y: object,
+        z: object,
+        yaw: object,
+        *,
+        drone_pose: tuple[float, float, float, float],
+    ) -> None:
+        """Take a position setpoint that arrived at sim time ``now_s``, when the drone was at
+        ``drone_pose`` (x, y, z, yaw)."""
         self.setpoint = check_setpoint(x, y, z, yaw)
         self.setpoint_time_s = now_s
+        self.failsafe_hold = drone_pose
 
     def set_cmd_vel(
         self, now_s: float, vx: object, vy: object, vz: object, yaw_rate: object
@@ -140,8 +154,8 @@ class CommandArbiter:
             ref.x, ref.y, ref.z, ref.yaw = self.setpoint
             ref.vx = ref.vy = ref.vz = ref.yaw_rate = 0.0
             return ref
-        if self.mode is ControlMode.OFFBOARD:  # the stream just stopped: failsafe, hold here
-            ref.x, ref.y, ref.z, ref.yaw = px, py, pz, yaw
+        if self.mode is ControlMode.OFFBOARD:  # the stream has stopped: failsafe
+            ref.x, ref.y, ref.z, ref.yaw = self.failsafe_hold
         if now_s - self.cmd_vel_time_s <= STREAM_TIMEOUT_S:
             vx, vy, vz, yaw_rate = self.cmd_vel
         else:

@@ -135,9 +135,13 @@ class World:
 
     def set_setpoint(self, x: float, y: float, z: float, yaw: float = 0.0) -> None:
         """Fly to (x, y, z) facing ``yaw`` (rad). Re-send at ~30 Hz: after STREAM_TIMEOUT_S of
-        sim time without one the drone holds where it is. Raises InvalidCommand."""
+        sim time without one the drone returns to where it was when the last one arrived and
+        holds there. Raises InvalidCommand."""
         self._check_open()
-        self._arbiter.set_setpoint(self.time_s, x, y, z, yaw)
+        (px, py, pz), orientation = self.drone_pose()
+        self._arbiter.set_setpoint(
+            self.time_s, x, y, z, yaw, drone_pose=(px, py, pz, _yaw_of(orientation))
+        )
 
     def set_cmd_vel(
         self, vx: float, vy: float, vz: float, yaw_rate: float = 0.0
@@ -187,7 +191,7 @@ class World:
             (vx, vy, vz), (wx, wy, wz) = get_velocity(drone, physicsClientId=client)
             if steps % divider == 0:
                 px, py, pz = position
-                yaw = math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+                yaw = _yaw_of((qx, qy, qz, qw))
                 ref = arbiter.update(steps * PHYSICS_DT_S, outer_dt, px, py, pz, yaw)
                 controller.update_position(ref, px, py, pz, vx, vy, vz, outer_dt)
             if not controller.idle:
@@ -273,3 +277,9 @@ class World:
         ]
         self._controller.reset()
         self._arbiter.reset(*self._start, yaw=0.0)
+
+
+def _yaw_of(q: Quaternion) -> float:
+    """Heading (rotation about world z) of an orientation quaternion (x, y, z, w), in rad."""
+    qx, qy, qz, qw = q
+    return math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
