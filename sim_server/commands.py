@@ -25,6 +25,7 @@ from sim_server.limits import (
     MAX_SPEED_XY,
     MAX_SPEED_Z,
     MAX_YAW_RATE,
+    ON_GROUND_Z_M,
     STREAM_TIMEOUT_S,
 )
 
@@ -164,6 +165,9 @@ class CommandArbiter:
         if low:  # horizontal commands are ignored near the ground; hold where it stands
             vx = vy = 0.0
             ref.x, ref.y = px, py
+            if pz <= ON_GROUND_Z_M:  # standing: motors off, heading is what it is
+                yaw_rate = 0.0
+                ref.yaw = yaw
         moving = vx != 0.0 or vy != 0.0 or vz != 0.0 or yaw_rate != 0.0
         self.mode = ControlMode.VELOCITY if moving else ControlMode.HOLD
         # A carrot: the target moves with the command, on a leash so it never runs far ahead.

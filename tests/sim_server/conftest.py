@@ -5,9 +5,9 @@ from __future__ import annotations
 from collections.abc import Callable, Iterator
 
 import pytest
-from sim_flight import stream_setpoint
 
 from sim_server.world import World, WorldConfig
+from tests.sim_server.flight import stream_setpoint
 
 
 @pytest.fixture

@@ -6,7 +6,6 @@ import math
 from collections.abc import Callable
 
 import pytest
-from sim_flight import stream_setpoint
 
 from sim_server.commands import ControlMode
 from sim_server.limits import (
@@ -19,6 +18,7 @@ from sim_server.limits import (
     PHYSICS_HZ,
 )
 from sim_server.world import InvalidCommand, Pose, World, WorldConfig
+from tests.sim_server.flight import stream_setpoint
 
 MakeWorld = Callable[..., World]
 TUMBLE_MARGIN_M = 2.0  # a box landing on a corner rolls up to ~1.7 m

@@ -5,7 +5,6 @@ from __future__ import annotations
 import math
 
 import pytest
-from sim_flight import idle, stream_cmd_vel, stream_setpoint
 
 from sim_server.commands import ControlMode
 from sim_server.limits import (
@@ -16,6 +15,7 @@ from sim_server.limits import (
     STREAM_TIMEOUT_S,
 )
 from sim_server.world import World
+from tests.sim_server.flight import idle, stream_cmd_vel, stream_setpoint
 
 SPEED_TOLERANCE = 0.3  # m/s over the limit, for the velocity loop's own overshoot
 
