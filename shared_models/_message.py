@@ -11,10 +11,20 @@ which is what ``skydeck interface show`` prints.
 
 from __future__ import annotations
 
+import base64
+import binascii
 from dataclasses import dataclass
 from typing import Annotated, Any, ClassVar
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import (
+    BaseModel,
+    BeforeValidator,
+    ConfigDict,
+    Field,
+    PlainSerializer,
+    ValidationInfo,
+    WithJsonSchema,
+)
 
 __all__ = [
     "Bool",
@@ -29,6 +39,8 @@ __all__ = [
     "ServiceType",
     "String",
     "UInt8",
+    "UInt8Array",
+    "UInt16",
     "UInt32",
     "all_interfaces",
 ]
@@ -45,12 +57,48 @@ Bool = Annotated[bool, RosPrimitive("bool")]
 Byte = Annotated[int, RosPrimitive("byte"), Field(ge=0, le=0xFF)]
 UInt8 = Annotated[int, RosPrimitive("uint8"), Field(ge=0, le=0xFF)]
 Int8 = Annotated[int, RosPrimitive("int8"), Field(ge=-(2**7), le=2**7 - 1)]
+UInt16 = Annotated[int, RosPrimitive("uint16"), Field(ge=0, le=0xFFFF)]
 Int32 = Annotated[int, RosPrimitive("int32"), Field(ge=-(2**31), le=2**31 - 1)]
 UInt32 = Annotated[int, RosPrimitive("uint32"), Field(ge=0, le=2**32 - 1)]
 Int64 = Annotated[int, RosPrimitive("int64"), Field(ge=-(2**63), le=2**63 - 1)]
 Float32 = Annotated[float, RosPrimitive("float32")]
 Float64 = Annotated[float, RosPrimitive("float64")]
 String = Annotated[str, RosPrimitive("string")]
+
+
+def _bytes_from(value: Any, info: ValidationInfo) -> Any:
+    # A list of ints is how ROS (and rosbridge's input) spells uint8[]. In Python mode a str is
+    # the base64 text of a JSON frame that went through json.loads (e.g. `skydeck topic pub`);
+    # in JSON mode pydantic's val_json_bytes="base64" decodes it.
+    if isinstance(value, list):
+        if not all(isinstance(item, int) and 0 <= item <= 0xFF for item in value):
+            raise ValueError("a uint8[] list must hold integers from 0 to 255")
+        return bytes(value)
+    if isinstance(value, str) and info.mode == "python":
+        try:
+            return base64.b64decode(value.replace("-", "+").replace("_", "/"), validate=True)
+        except binascii.Error as error:
+            raise ValueError(f"uint8[] given as a string must be base64 ({error})") from None
+    return value
+
+
+def _bytes_to_base64(value: bytes) -> str:
+    # The standard alphabet (pydantic's "base64" writes the URL-safe one), so a browser can put
+    # a JPEG straight into `data:image/jpeg;base64,...` as rosbridge clients do.
+    return base64.b64encode(value).decode("ascii")
+
+
+# uint8[] as Python bytes; base64 text in JSON (a JSON array of ints would be 3-4x bigger). A model
+# with such a field also sets ser_json_bytes/val_json_bytes="base64" in its config.
+UInt8Array = Annotated[
+    bytes,
+    RosPrimitive("uint8[]"),
+    BeforeValidator(_bytes_from),
+    PlainSerializer(_bytes_to_base64, return_type=str, when_used="json"),
+    WithJsonSchema(
+        {"type": "string", "contentEncoding": "base64", "description": "uint8[] as base64"}
+    ),
+]
 
 # Every registered interface by its full ROS name ("pkg/msg/Name" or "pkg/srv/Name").
 _INTERFACES: dict[str, type[Message] | type[ServiceType]] = {}
