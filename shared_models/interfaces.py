@@ -65,7 +65,7 @@ def _suggestions(name: str, known: dict[str, Interface]) -> list[str]:
         for ros_type in public
     }
     wanted = name.lower().replace("/msg/", "/").replace("/srv/", "/")
-    matches = [by_short[m] for m in difflib.get_close_matches(wanted, by_short, n=3, cutoff=0.6)]
+    matches = [by_short[m] for m in difflib.get_close_matches(wanted, by_short, n=3, cutoff=0.75)]
     # A bare type name ("PoseStamped") matches on the part after the package.
     last = wanted.rsplit("/", 1)[-1]
     matches += [

@@ -95,6 +95,7 @@ def resolve_name(name: str, namespace: str = "/") -> str:
         _check_tokens(name, 1)
         return check_not_reserved(name)
     _check_tokens(name, 0)
+    namespace = namespace.rstrip("/") if namespace != "/" else namespace
     if namespace != "/":
         if not namespace.startswith("/"):
             raise InvalidNameError(namespace, "a namespace must be absolute (start with '/')")

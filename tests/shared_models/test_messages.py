@@ -1,0 +1,271 @@
+"""Messages: ROS field names, defaults, JSON round trips and validation."""
+
+from __future__ import annotations
+
+import base64
+import json
+import math
+
+import pytest
+from pydantic import ValidationError
+
+import shared_models
+from shared_models import Message, ServiceType, all_interfaces
+from shared_models.builtin_interfaces import Time
+from shared_models.geometry_msgs import (
+    Point,
+    Point32,
+    PointStamped,
+    Polygon,
+    Quaternion,
+)
+from shared_models.mavros_msgs import PositionTarget, State
+from shared_models.rcl_interfaces import Log
+from shared_models.ros_workshop import AiStatus, ControlState, FlyCommand
+from shared_models.sensor_msgs import CompressedImage
+from shared_models.std_msgs import Header
+from shared_models.std_srvs import SetBool, Trigger, TriggerRequest, TriggerResponse
+
+# The ROS field names in .msg order, written out independently of the models so that a renamed
+# or reordered field fails here.
+ROS_FIELDS: dict[str, list[str]] = {
+    "builtin_interfaces/msg/Time": ["sec", "nanosec"],
+    "builtin_interfaces/msg/Duration": ["sec", "nanosec"],
+    "std_msgs/msg/Header": ["seq", "stamp", "frame_id"],
+    "std_msgs/msg/String": ["data"],
+    "std_msgs/msg/Bool": ["data"],
+    "std_msgs/msg/Int32": ["data"],
+    "std_msgs/msg/Float64": ["data"],
+    "std_msgs/msg/Empty": [],
+    "geometry_msgs/msg/Point": ["x", "y", "z"],
+    "geometry_msgs/msg/Point32": ["x", "y", "z"],
+    "geometry_msgs/msg/Vector3": ["x", "y", "z"],
+    "geometry_msgs/msg/Quaternion": ["x", "y", "z", "w"],
+    "geometry_msgs/msg/Pose": ["position", "orientation"],
+    "geometry_msgs/msg/PoseStamped": ["header", "pose"],
+    "geometry_msgs/msg/PoseArray": ["header", "poses"],
+    "geometry_msgs/msg/Polygon": ["points"],
+    "geometry_msgs/msg/PointStamped": ["header", "point"],
+    "geometry_msgs/msg/Twist": ["linear", "angular"],
+    "geometry_msgs/msg/TwistStamped": ["header", "twist"],
+    "sensor_msgs/msg/CompressedImage": ["header", "format", "data"],
+    "rcl_interfaces/msg/Log": ["stamp", "level", "name", "msg", "file", "function", "line"],
+    "mavros_msgs/msg/State": [
+        "header",
+        "connected",
+        "armed",
+        "guided",
+        "manual_input",
+        "mode",
+        "system_status",
+    ],
+    "mavros_msgs/msg/PositionTarget": [
+        "header",
+        "coordinate_frame",
+        "type_mask",
+        "position",
+        "velocity",
+        "acceleration_or_force",
+        "yaw",
+        "yaw_rate",
+    ],
+    "std_srvs/srv/Trigger_Request": [],
+    "std_srvs/srv/Trigger_Response": ["success", "message"],
+    "std_srvs/srv/Empty_Request": [],
+    "std_srvs/srv/Empty_Response": [],
+    "std_srvs/srv/SetBool_Request": ["data"],
+    "std_srvs/srv/SetBool_Response": ["success", "message"],
+    "ros_workshop/srv/FlyCommand_Request": ["x", "y"],
+    "ros_workshop/srv/FlyCommand_Response": ["success", "message"],
+    "ros_workshop/msg/AiStatus": [
+        "header",
+        "state",
+        "message",
+        "visited",
+        "target",
+        "remaining",
+        "tour",
+        "tour_length",
+    ],
+    "ros_workshop/msg/ControlState": ["header", "state", "setpoint"],
+}
+
+MESSAGES = {name: cls for name, cls in all_interfaces().items() if issubclass(cls, Message)}
+
+
+def test_every_registered_message_has_its_ros_fields_listed_here() -> None:
+    assert sorted(MESSAGES) == sorted(ROS_FIELDS)
+
+
+@pytest.mark.parametrize("ros_type", sorted(MESSAGES))
+def test_default_instance_round_trips_through_json_with_ros_keys(ros_type: str) -> None:
+    cls = MESSAGES[ros_type]
+    msg = cls()
+    text = msg.model_dump_json()
+    assert list(json.loads(text)) == ROS_FIELDS[ros_type]
+    assert cls.model_validate_json(text) == msg
+    assert cls.model_validate(msg.model_dump(mode="json")) == msg
+
+
+def test_services_are_registered_with_their_parts() -> None:
+    services = {name: cls for name, cls in all_interfaces().items() if issubclass(cls, ServiceType)}
+    assert sorted(services) == [
+        "ros_workshop/srv/FlyCommand",
+        "std_srvs/srv/Empty",
+        "std_srvs/srv/SetBool",
+        "std_srvs/srv/Trigger",
+    ]
+    for name, srv in services.items():
+        assert srv.Request.__ros_type__ == name + "_Request"
+        assert srv.Response.__ros_type__ == name + "_Response"
+
+
+def test_model_class_names_are_unique_across_the_package() -> None:
+    # OpenAPI component names come from class names.
+    names = [cls.__name__ for cls in MESSAGES.values()]
+    assert len(names) == len(set(names)), sorted(names)
+
+
+def test_seed_usage_reads_like_ros() -> None:
+    header = Header(stamp=Time(sec=12, nanosec=500), frame_id="odom")
+    msg = PointStamped(header=header, point=Point(x=1.0, y=2.0, z=0.0))
+    assert json.loads(msg.model_dump_json()) == {
+        "header": {"seq": 0, "stamp": {"sec": 12, "nanosec": 500}, "frame_id": "odom"},
+        "point": {"x": 1.0, "y": 2.0, "z": 0.0},
+    }
+    polygon = Polygon()
+    polygon.points.append(Point32(x=1.0, y=2.0, z=0.0))
+    assert Polygon().points == []  # the default list is not shared
+    assert TriggerResponse(success=True, message="All ok!").message == "All ok!"
+    assert isinstance(Trigger.Request(), TriggerRequest)
+    assert Trigger.Response is TriggerResponse
+    assert SetBool.Request(data=True).data is True
+    assert FlyCommand.Request(x=1.5, y=-2.0).x == 1.5
+
+
+def test_ros_defaults() -> None:
+    assert Quaternion() == Quaternion(x=0.0, y=0.0, z=0.0, w=1.0)
+    assert AiStatus().target == -1
+    assert AiStatus().state == "idle"
+    assert ControlState().state == "landed"
+    assert State().mode == ""
+
+
+def test_constants_are_class_attributes() -> None:
+    assert (Log.DEBUG, Log.INFO, Log.WARN, Log.ERROR, Log.FATAL) == (10, 20, 30, 40, 50)
+    assert PositionTarget.FRAME_LOCAL_NED == 1
+    assert PositionTarget.FRAME_BODY_NED == 8
+    assert PositionTarget.IGNORE_YAW_RATE == 2048
+    assert "DEBUG" not in Log.model_fields
+    assert "FRAME_LOCAL_NED" not in json.loads(PositionTarget().model_dump_json())
+
+
+class TestCompressedImage:
+    JPEG = bytes([0xFF, 0xD8, 0xFF, 0xE0, 0x00, 0xFB, 0xFF, 0xD9])
+
+    def test_raw_bytes_in_python_base64_in_json(self) -> None:
+        image = CompressedImage(format="jpeg", data=self.JPEG)
+        assert image.data == self.JPEG
+        encoded = json.loads(image.model_dump_json())["data"]
+        # The standard alphabet, so a browser can use it in a data: URL.
+        assert encoded == base64.b64encode(self.JPEG).decode()
+        assert CompressedImage.model_validate_json(image.model_dump_json()) == image
+
+    def test_json_decoded_dict_and_int_list_are_accepted(self) -> None:
+        image = CompressedImage(data=self.JPEG)
+        assert CompressedImage.model_validate(image.model_dump(mode="json")).data == self.JPEG
+        assert CompressedImage.model_validate({"data": list(self.JPEG)}).data == self.JPEG
+        as_list = json.dumps({"data": list(self.JPEG)})
+        assert CompressedImage.model_validate_json(as_list).data == self.JPEG
+        url_safe = json.dumps({"data": base64.urlsafe_b64encode(self.JPEG).decode()})
+        assert CompressedImage.model_validate_json(url_safe).data == self.JPEG
+
+    def test_bad_data_is_refused(self) -> None:
+        with pytest.raises(ValidationError, match="base64"):
+            CompressedImage.model_validate({"data": "not base64!"})
+        with pytest.raises(ValidationError, match="0 to 255"):
+            CompressedImage.model_validate({"data": [1, 256]})
+
+
+class TestValidation:
+    @pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
+    def test_non_finite_floats_are_refused_in_python(self, bad: float) -> None:
+        with pytest.raises(ValidationError):
+            Point(x=bad)
+        with pytest.raises(ValidationError):
+            PositionTarget(position=Point(z=bad))
+        with pytest.raises(ValidationError):
+            PositionTarget(yaw=bad)
+        with pytest.raises(ValidationError):
+            FlyCommand.Request(x=1.0, y=bad)
+
+    @pytest.mark.parametrize("bad", ["NaN", "Infinity", "-Infinity"])
+    def test_non_finite_floats_are_refused_in_json(self, bad: str) -> None:
+        with pytest.raises(ValidationError):
+            Point.model_validate_json(f'{{"x": {bad}, "y": 0, "z": 0}}')
+        with pytest.raises(ValidationError):
+            PositionTarget.model_validate_json(f'{{"position": {{"x": {bad}}}}}')
+        with pytest.raises(ValidationError):
+            FlyCommand.Request.model_validate_json(f'{{"x": {bad}, "y": 1.0}}')
+        with pytest.raises(ValidationError):
+            ControlState.model_validate_json(f'{{"setpoint": {{"y": {bad}}}}}')
+
+    def test_unknown_field_is_refused(self) -> None:
+        with pytest.raises(ValidationError, match="extra"):
+            Point(x=1.0, w=2.0)  # type: ignore[call-arg]
+        with pytest.raises(ValidationError, match="extra"):
+            TriggerResponse.model_validate_json('{"success": true, "mesage": "typo"}')
+
+    @pytest.mark.parametrize(
+        ("cls", "field", "bad"),
+        [
+            (Header, "seq", -1),
+            (Header, "seq", 2**32),
+            (Time, "sec", 2**31),
+            (Time, "nanosec", -1),
+            (Log, "level", 256),
+            (Log, "line", -1),
+            (State, "system_status", 256),
+            (PositionTarget, "coordinate_frame", -1),
+            (PositionTarget, "type_mask", 0x10000),
+            (AiStatus, "target", 2**31),
+        ],
+    )
+    def test_int_ranges(self, cls: type[Message], field: str, bad: int) -> None:
+        with pytest.raises(ValidationError):
+            cls.model_validate({field: bad})
+
+    def test_int_arrays_check_every_item(self) -> None:
+        assert AiStatus(visited=[0, 3], tour=[2, 1]).tour == [2, 1]
+        with pytest.raises(ValidationError):
+            AiStatus(visited=[0, 2**31])
+
+    def test_states_are_validated(self) -> None:
+        for state in ("idle", "taking_off", "flying", "landing", "done", "error"):
+            assert AiStatus.model_validate({"state": state}).state == state
+        for state in ("landed", "taking_off", "flying", "landing"):
+            assert ControlState.model_validate({"state": state}).state == state
+        with pytest.raises(ValidationError):
+            AiStatus.model_validate({"state": "landed"})
+        with pytest.raises(ValidationError):
+            ControlState.model_validate({"state": "done"})
+
+
+def test_public_api_is_pinned() -> None:
+    assert sorted(shared_models.__all__) == sorted(
+        [
+            "Message",
+            "ServiceType",
+            "all_interfaces",
+            "get_interface",
+            "interface_text",
+            "interface_names",
+            "UnknownInterfaceError",
+            "resolve_name",
+            "resolve_node_name",
+            "InvalidNameError",
+            "RESERVED_PREFIXES",
+        ]
+    )
+    for name in shared_models.__all__:
+        assert getattr(shared_models, name) is not None
