@@ -1,0 +1,135 @@
+// The system's graph (`rostopic list`, `rosservice list`, `rosnode list`): polled from the core
+// about once a second; listeners get every new graph, or the error when the core is away.
+
+import { getJson } from "./api.js";
+
+const POLL_MS = 1000;
+
+export class GraphPoller extends EventTarget {
+  constructor() {
+    super();
+    this.graph = null;
+    this.error = null;
+    this.failures = 0;
+  }
+
+  start() {
+    const poll = async () => {
+      try {
+        this.graph = await getJson("/api/graph");
+        this.error = null;
+        this.failures = 0;
+      } catch (error) {
+        this.error = error;
+        this.failures += 1;
+      }
+      this.dispatchEvent(new Event("update"));
+      setTimeout(poll, this.failures ? Math.min(POLL_MS * this.failures, 5000) : POLL_MS);
+    };
+    poll();
+  }
+
+  topicType(name) {
+    const topic = this.graph && this.graph.topics.find((t) => t.name === name);
+    return topic ? topic.type : null;
+  }
+
+  service(name) {
+    return (this.graph && this.graph.services.find((s) => s.name === name)) || null;
+  }
+}
+
+function cell(text, className) {
+  const td = document.createElement("td");
+  td.textContent = text;
+  if (className) td.className = className;
+  return td;
+}
+
+function shortType(type) {
+  return type.replace("/msg/", "/").replace("/srv/", "/");
+}
+
+/** The Topics tab: topics with types and live rates, services, nodes. */
+export class GraphTables {
+  constructor({ topics, services, nodes, onPick }) {
+    this.topics = topics.tBodies[0];
+    this.services = services.tBodies[0];
+    this.nodes = nodes;
+    this.onPick = onPick;
+    this._key = "";
+  }
+
+  render(graph) {
+    const key = JSON.stringify(graph);
+    if (key === this._key) return;
+    this._key = key;
+    this._renderTopics(graph.topics);
+    this._renderServices(graph.services);
+    this._renderNodes(graph.nodes);
+  }
+
+  _renderTopics(topics) {
+    const rows = [...topics].sort((a, b) => a.name.localeCompare(b.name)).map((topic) => {
+      const tr = document.createElement("tr");
+      tr.dataset.topic = topic.name;
+      tr.title = `inspect ${topic.name}`;
+      tr.className = "pickable";
+      const rate = typeof topic.rate_hz === "number" ? topic.rate_hz.toFixed(1) : "–";
+      const flow = `${topic.publishers.join(", ") || "∅"} → ${topic.subscribers.join(", ") || "∅"}`;
+      tr.append(cell(topic.name, "mono"), cell(shortType(topic.type), "dim"), cell(rate, "num"), cell(flow, "dim small-text"));
+      tr.addEventListener("click", () => this.onPick(topic.name));
+      return tr;
+    });
+    if (!rows.length) rows.push(emptyRow(4, "no topics: is anything running?"));
+    this.topics.replaceChildren(...rows);
+  }
+
+  _renderServices(services) {
+    const rows = [...services].sort((a, b) => a.name.localeCompare(b.name)).map((service) => {
+      const tr = document.createElement("tr");
+      tr.dataset.service = service.name;
+      tr.title = `call ${service.name}`;
+      tr.className = "pickable";
+      tr.append(cell(service.name, "mono"), cell(shortType(service.type), "dim"), cell(service.node, "dim"));
+      tr.addEventListener("click", () => this.onPick(service.name));
+      return tr;
+    });
+    if (!rows.length) rows.push(emptyRow(3, "no services"));
+    this.services.replaceChildren(...rows);
+  }
+
+  _renderNodes(nodes) {
+    const items = [...nodes].sort((a, b) => a.name.localeCompare(b.name)).map((node) => {
+      const li = document.createElement("li");
+      li.dataset.node = node.name;
+      const title = document.createElement("div");
+      title.innerHTML = "<strong class='mono'></strong> <span class='dim'></span>";
+      title.firstChild.textContent = node.name;
+      title.lastChild.textContent = `${node.url}${node.pid ? `, pid ${node.pid}` : ""}`;
+      const detail = document.createElement("div");
+      detail.className = "dim small-text";
+      detail.textContent =
+        `pub ${node.publications.length}: ${node.publications.join(", ") || "–"} · ` +
+        `sub ${node.subscriptions.length}: ${node.subscriptions.join(", ") || "–"} · ` +
+        `srv ${node.services.length}: ${node.services.join(", ") || "–"}`;
+      li.append(title, detail);
+      return li;
+    });
+    if (!items.length) {
+      const li = document.createElement("li");
+      li.className = "dim";
+      li.textContent = "no nodes registered";
+      items.push(li);
+    }
+    this.nodes.replaceChildren(...items);
+  }
+}
+
+function emptyRow(span, text) {
+  const tr = document.createElement("tr");
+  const td = cell(text, "dim");
+  td.colSpan = span;
+  tr.append(td);
+  return tr;
+}
