@@ -37,7 +37,7 @@ export class Inspector {
     const key = names.join();
     if (key !== this._namesKey) {
       this._namesKey = key;
-      this.e.names.replaceChildren(...names.map((n) => new Option(n)));
+      this.e.names.replaceChildren(...names.map((n) => new Option(n, n)));
     }
   }
 
@@ -119,7 +119,7 @@ export class Inspector {
         return;
       }
     }
-    this.e.type.replaceChildren(new Option("choose a type…", ""), ...this._interfaces.map((n) => new Option(n)));
+    this.e.type.replaceChildren(new Option("choose a type…", ""), ...this._interfaces.map((n) => new Option(n, n)));
   }
 
   async _chooseType(type) {
@@ -153,8 +153,7 @@ export class Inspector {
     if (this.kind === "service") {
       this._result("pending", `calling ${this.name}…`);
       const answer = await callService(this.name, msg);
-      const text = answer.body ? JSON.stringify(answer.body) : answer.message;
-      this._result(answer.kind, answer.kind === "error" ? `HTTP ${answer.status || "–"}: ${answer.message}` : text);
+      this._result(answer.kind, describeAnswer(answer));
       return;
     }
     if (!this.type) {
@@ -188,6 +187,13 @@ export class Inspector {
     this.paused = false;
     this.e.pause.textContent = "Pause";
   }
+}
+
+function describeAnswer(answer) {
+  if (answer.kind === "error") return `⚠ HTTP ${answer.status || "–"}: ${answer.message}`;
+  const { success, message, ...rest } = answer.body || {};
+  const extra = Object.keys(rest).length ? ` ${JSON.stringify(rest)}` : "";
+  return `${answer.kind === "success" ? "✓ success" : "✗ refused"}: ${message ?? ""}${extra}`;
 }
 
 // Camera frames and other long strings would drown the echo: show their length instead.

@@ -4,6 +4,7 @@
 import { View } from "./geometry.js";
 import {
   COLORS,
+  drawArena,
   drawBoxes,
   drawCross,
   drawDrone,
@@ -73,6 +74,7 @@ export class MapView {
     ctx.fillStyle = COLORS.background;
     ctx.fillRect(0, 0, view.width, view.height);
     drawGrid(ctx, view);
+    drawArena(ctx, view);
     drawBoxes(ctx, view, world.simBoxes, world.perceptionBoxes, world.aiStatus);
     drawTour(ctx, view, pose, world.perceptionBoxes, world.aiStatus);
     drawTrack(ctx, view, world.track);

@@ -62,6 +62,18 @@ export function drawGrid(ctx, view) {
   ctx.fillText("y (m)", Math.min(Math.max(ox + 6, 28), view.width - 40), 10);
 }
 
+/** The arena control accepts fly targets in (±20 m), dashed. */
+export function drawArena(ctx, view, half = 20) {
+  const [x0, y0] = view.toScreen(-half, half);
+  const [x1, y1] = view.toScreen(half, -half);
+  ctx.save();
+  ctx.setLineDash([4, 6]);
+  ctx.strokeStyle = "#3b4b5c";
+  ctx.lineWidth = 1;
+  ctx.strokeRect(x0, y0, x1 - x0, y1 - y0);
+  ctx.restore();
+}
+
 /** Index of the perception box nearest to (x, y) within 2 m, or -1. */
 function nearestIndex(points, x, y) {
   let best = -1;

@@ -2,6 +2,7 @@
 // (core unreachable, simulator absent or not publishing).
 
 const STALE_POSE_S = 2;
+const STARTUP_GRACE_MS = 3000; // sockets are still connecting: no "not publishing" yet
 
 export class StatusBanner {
   constructor({ banner, pill, summary, graph, world }) {
@@ -37,7 +38,7 @@ export class StatusBanner {
       if (!pose || !pose.publishers.length) {
         state = "warn";
         message = "Simulator not running: nothing publishes /drone/pose. Start it with `skydeck run sim` (or `make up`).";
-      } else if (age > STALE_POSE_S) {
+      } else if (age > STALE_POSE_S && !(age === Infinity && performance.now() < STARTUP_GRACE_MS)) {
         state = "warn";
         message = Number.isFinite(age)
           ? `Simulator not publishing: no /drone/pose for ${age.toFixed(0)} s (${pose.publishers.join(", ")} registered).`
