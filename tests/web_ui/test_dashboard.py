@@ -160,6 +160,17 @@ def test_take_off_button_makes_the_drone_climb(dashboard) -> None:  # type: igno
     assert page.get_attribute("#command-result", "data-kind") == "success"
     assert page.get_attribute("#command-result", "data-service") == "/control/take_off"
     page.wait_for_function("window.skydeck.pose.z > 2.5", timeout=30_000)
+    # Control logged it on /rosout: the console shows it, and filters it by level and node.
+    page.wait_for_function(
+        "window.skydeck.log.some(e => e.name === '/control' && e.level === 20)", timeout=10_000
+    )
+    page.locator("#log .log-entry[data-level=INFO]").first.wait_for(timeout=5_000)
+    page.select_option("#log-level", "30")
+    assert page.locator("#log .log-entry[data-level=INFO]").count() == 0
+    page.select_option("#log-level", "10")
+    page.select_option("#log-node", "/control")
+    names = page.locator("#log .log-node").all_inner_texts()
+    assert names and set(names) == {"[/control]"}
 
 
 def test_refusals_and_http_errors_are_told_apart(dashboard, system: System) -> None:  # type: ignore[no-untyped-def]
@@ -289,13 +300,23 @@ def test_inspector_echoes_pauses_and_publishes(dashboard, system: System) -> Non
     assert latest is not None and latest["point"]["x"] == 3.5  # type: ignore[index]
 
 
-def test_banner_tells_when_the_core_is_unreachable(dashboard, system: System) -> None:  # type: ignore[no-untyped-def]
-    # Last in the module: it stops the core.
+def test_banner_and_reconnection_when_the_core_or_the_simulator_goes_away(dashboard, system: System) -> None:  # type: ignore[no-untyped-def]
+    # Last in the module: it stops the core, then the simulator.
     page, _ = dashboard
-    assert page.locator("#status-banner").is_hidden()
+    page.wait_for_function("document.querySelector('#status-banner').dataset.state === 'ok'", timeout=5_000)
     system.processes["core"].stop()
-    page.wait_for_function(
-        "document.querySelector('#status-banner').dataset.state === 'error'", timeout=15_000
-    )
+    page.wait_for_function("document.querySelector('#status-banner').dataset.state === 'error'", timeout=15_000)
     assert "Core unreachable" in page.inner_text("#status-banner")
     assert page.get_attribute("#core-status", "data-state") == "error"
+
+    # The core comes back on the same port: nodes re-register, every socket reconnects by itself.
+    system.start("core", ["core"], system.base_port)
+    page.wait_for_function("document.querySelector('#status-banner').dataset.state === 'ok'", timeout=30_000)
+    before = page.evaluate("window.skydeck.sockets().find(s => s.topic === '/drone/pose').messages")
+    page.wait_for_function(
+        "n => window.skydeck.sockets().find(s => s.topic === '/drone/pose').messages > n + 30", arg=before, timeout=15_000
+    )
+
+    system.processes["sim"].stop()
+    page.wait_for_function("document.querySelector('#status-banner').dataset.state === 'warn'", timeout=15_000)
+    assert "Simulator not" in page.inner_text("#status-banner")
