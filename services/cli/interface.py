@@ -4,9 +4,15 @@ from __future__ import annotations
 
 import argparse
 
-from shared_models import Message, UnknownInterfaceError, get_interface, interface_names, interface_text
 from services.cli.errors import CliError
 from services.cli.formatting import to_yaml
+from shared_models import (
+    Message,
+    UnknownInterfaceError,
+    get_interface,
+    interface_names,
+    interface_text,
+)
 
 __all__ = ["add_parser"]
 

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import argparse
 
-from shared_models import InvalidNameError, resolve_name
 from services.cli.core_client import get_json, post_json
 from services.cli.errors import CliError
 from services.cli.formatting import parse_data, to_yaml
+from shared_models import InvalidNameError, resolve_name
 
 __all__ = ["add_parser"]
 

@@ -13,11 +13,17 @@ from pydantic import ValidationError
 from websockets.asyncio.client import connect
 from websockets.exceptions import ConnectionClosed, InvalidHandshake, InvalidStatus
 
-from shared_models import InvalidNameError, Message, UnknownInterfaceError, get_interface, resolve_name
 from services.cli.core_client import auth_headers, core_url, get_json, ws_url
 from services.cli.errors import CliError
 from services.cli.formatting import parse_data, to_yaml
 from services.runtime.stream import describe_validation_error
+from shared_models import (
+    InvalidNameError,
+    Message,
+    UnknownInterfaceError,
+    get_interface,
+    resolve_name,
+)
 
 __all__ = ["add_parser"]
 

@@ -6,6 +6,7 @@ from typing import Annotated, Any
 
 from fastapi import APIRouter, Depends, HTTPException, Request
 
+from services.core.registry import Registry
 from shared_models import (
     Message,
     ServiceType,
@@ -14,7 +15,6 @@ from shared_models import (
     interface_names,
     interface_text,
 )
-from services.core.registry import Registry
 
 __all__ = ["router"]
 

@@ -13,7 +13,6 @@ from fastapi.responses import JSONResponse, Response
 from starlette.requests import Request
 from starlette.websockets import WebSocket
 
-from shared_models import InvalidNameError, Message, UnknownInterfaceError, get_interface, resolve_name
 from services.core.registry import Registry
 from services.core.relay import GATEWAY_NODE, Relays
 from services.core.settings import CoreSettings
@@ -26,6 +25,13 @@ from services.runtime.stream import (
     close_with,
     parse_frame,
     serve_stream,
+)
+from shared_models import (
+    InvalidNameError,
+    Message,
+    UnknownInterfaceError,
+    get_interface,
+    resolve_name,
 )
 
 __all__ = ["Gateway"]

@@ -9,16 +9,16 @@ of the topic in the registry at ``/api/gateway``, and nodes subscribed to it lin
 from __future__ import annotations
 
 import asyncio
-import os
 import logging
+import os
 from dataclasses import dataclass, field
 
-from shared_models import Message
 from services.core.registry import Registry
 from services.core.settings import CoreSettings
 from services.runtime.links import PublisherLink
 from services.runtime.outbox import Outbox
 from services.runtime.protocol import Entity, NodeDescription
+from shared_models import Message
 
 __all__ = ["GATEWAY_NODE", "GATEWAY_PATH", "Relays"]
 

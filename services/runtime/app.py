@@ -12,11 +12,11 @@ from collections.abc import Awaitable, Callable
 from typing import TYPE_CHECKING, Annotated, Any
 
 from fastapi import Body, FastAPI
+from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse, Response
 from starlette.requests import Request as HTTPRequest
 from starlette.websockets import WebSocket
 
-from shared_models import Message
 from services.runtime.auth import token_matches
 from services.runtime.endpoint import TopicEndpoint
 from services.runtime.limits import BodySizeLimit
@@ -30,6 +30,8 @@ from services.runtime.stream import (
     parse_frame,
     serve_stream,
 )
+from services.runtime.validation import request_validation_handler
+from shared_models import Message
 
 if TYPE_CHECKING:
     from services.runtime.node import Node
@@ -52,6 +54,7 @@ class NodeApp:
             redoc_url=None,
         )
         self.fastapi.add_middleware(BodySizeLimit, max_bytes=node.settings.max_message_bytes)
+        self.fastapi.add_exception_handler(RequestValidationError, request_validation_handler)
         self.fastapi.add_api_route("/health", self._health, methods=["GET"], tags=["node"], summary="Liveness")
 
     async def _health(self) -> dict[str, Any]:

@@ -12,12 +12,12 @@ from typing import Generic, TypeVar
 
 import httpx
 
-from shared_models import Message, ServiceType
 from services.runtime.errors import (
     ServiceCallRejectedError,
     ServiceTimeoutError,
     ServiceUnavailableError,
 )
+from shared_models import Message, ServiceType
 
 __all__ = ["Client"]
 

@@ -8,8 +8,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from shared_models import Message
 from services.runtime.outbox import Outbox
+from shared_models import Message
 
 if TYPE_CHECKING:
     from services.runtime.subscription import Subscription

@@ -27,8 +27,15 @@ class NodeLogger:
     Messages may use %-style arguments as rospy's ``loginfo("got %s", x)`` does.
     """
 
-    def __init__(self, node_name: str, stamp: Callable[[], Time], publish: Callable[[Log], None]) -> None:
+    def __init__(
+        self, node_name: str, stamp: Callable[[], Time], publish: Callable[[Log], None], *, level: str = "INFO"
+    ) -> None:
         self.name = node_name
+        # The node's own threshold (ROS's logger level) decides what reaches /rosout, whatever
+        # the process's logging configuration does with the local copy.
+        self._min_python_level = logging.getLevelName(level.upper())
+        if not isinstance(self._min_python_level, int):
+            raise ValueError(f"unknown log level {level!r}: use debug, info, warning or error")
         self._logger = logging.getLogger(f"skydeck.node.{node_name.lstrip('/')}")
         self._stamp = stamp
         self._publish = publish
@@ -57,7 +64,7 @@ class NodeLogger:
 
     def _log(self, level: int, msg: str, args: tuple[Any, ...]) -> None:
         python_level = _LEVELS[level]
-        if not self._logger.isEnabledFor(python_level):
+        if python_level < self._min_python_level:
             return
         text = str(msg) % args if args else str(msg)
         caller = sys._getframe(2)

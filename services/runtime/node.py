@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-import logging
 import os
 import socket
 from collections.abc import Callable, Coroutine
@@ -20,9 +19,6 @@ import httpx
 import uvicorn
 from pydantic import ValidationError
 
-from shared_models import Message, ServiceType, resolve_name, resolve_node_name
-from shared_models.builtin_interfaces import Time
-from shared_models.rcl_interfaces import Log
 from services.runtime.app import NodeApp
 from services.runtime.client import Client
 from services.runtime.clock import Clock
@@ -37,6 +33,9 @@ from services.runtime.session import CoreSession, RegistrationRejected
 from services.runtime.settings import NodeSettings
 from services.runtime.subscription import Subscription
 from services.runtime.timer import Timer
+from shared_models import Message, ServiceType, resolve_name, resolve_node_name
+from shared_models.builtin_interfaces import Time
+from shared_models.rcl_interfaces import Log
 
 __all__ = ["Node"]
 
@@ -44,6 +43,7 @@ M = TypeVar("M", bound=Message)
 
 _ROSOUT = "/rosout"
 _CLOCK = "/clock"
+_SHUTDOWN_GRACE_S = 2.0
 
 
 class _QuietServer(uvicorn.Server):
@@ -85,7 +85,7 @@ class Node:
         self._session: CoreSession | None = None
         self._http: httpx.AsyncClient | None = None
         self._rosout = self.create_publisher(Log, _ROSOUT, 100)
-        self._logger = NodeLogger(self._name, self._stamp, self._rosout.publish)
+        self._logger = NodeLogger(self._name, self._stamp, self._rosout.publish, level=self.settings.log_level)
         if self.settings.use_sim_time:
             self.create_subscription(Time, _CLOCK, self._clock.set_sim_time, 1)
 
@@ -352,7 +352,12 @@ class Node:
         await asyncio.gather(*self._tasks, return_exceptions=True)
         self._links.clear()
         self._server.should_exit = True
-        await self._server_task
+        try:
+            # In-flight requests get a moment to finish; a handler that hangs does not hang us.
+            await asyncio.wait_for(asyncio.shield(self._server_task), _SHUTDOWN_GRACE_S)
+        except TimeoutError:
+            self._server.force_exit = True
+            await self._server_task
         if self._http is not None:
             await self._http.aclose()
 

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from typing import Generic, TypeVar
 
-from shared_models import Message
 from services.runtime.endpoint import TopicEndpoint
+from shared_models import Message
 
 __all__ = ["Publisher"]
 

@@ -7,8 +7,8 @@ import logging
 from collections.abc import Callable
 from typing import Any
 
-from shared_models import Message, ServiceType
 from services.runtime.errors import NodeError
+from shared_models import Message, ServiceType
 
 __all__ = ["Service", "ServiceHandlerError"]
 

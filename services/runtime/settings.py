@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import os
+
 from pydantic import Field
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
-__all__ = ["DEFAULT_CORE_URL", "MAX_MESSAGE_BYTES", "NodeSettings"]
+__all__ = ["DEFAULT_CORE_URL", "MAX_MESSAGE_BYTES", "NodeSettings", "settings_with_default_port"]
 
 DEFAULT_CORE_URL = "http://127.0.0.1:8000"
 # Frames and bodies above this are refused (WebSocket close 1009, HTTP 413): a camera frame is
@@ -39,3 +41,10 @@ class NodeSettings(BaseSettings):
     service_timeout_s: float = Field(default=10.0, gt=0)
 
     log_level: str = "INFO"
+
+
+def settings_with_default_port(default_port: int) -> NodeSettings:
+    """Settings for a built-in node: its well-known port unless ``SKYDECK_PORT`` says otherwise."""
+    if "SKYDECK_PORT" in os.environ:
+        return NodeSettings()
+    return NodeSettings(port=default_port)

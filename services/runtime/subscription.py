@@ -8,8 +8,8 @@ from collections import deque
 from collections.abc import Callable
 from typing import Any
 
-from shared_models import Message
 from services.runtime.callbacks import call_user
+from shared_models import Message
 
 __all__ = ["Subscription"]
 

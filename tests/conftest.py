@@ -1,0 +1,96 @@
+"""Fixtures shared by the suite: real cores and nodes on free loopback ports, in-process."""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import socket
+from collections.abc import AsyncIterator, Awaitable, Callable
+
+import pytest
+import uvicorn
+
+from services.core.app import create_app
+from services.core.settings import CoreSettings
+from services.runtime import Node, NodeSettings
+
+
+def free_port() -> int:
+    """A TCP port free on loopback right now."""
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return int(sock.getsockname()[1])
+
+
+async def wait_until(predicate: Callable[[], bool], timeout_s: float = 5.0, what: str = "condition") -> None:
+    """Poll ``predicate`` (for state with no event to await) until true or fail after ``timeout_s``."""
+    try:
+        async with asyncio.timeout(timeout_s):
+            while not predicate():
+                await asyncio.sleep(0.01)
+    except TimeoutError:
+        raise AssertionError(f"timed out after {timeout_s} s waiting for {what}") from None
+
+
+class CoreProcess:
+    """A real core on uvicorn, served from the test's event loop; can be stopped and restarted."""
+
+    def __init__(self, port: int | None = None, **settings: object) -> None:
+        self.port = port or free_port()
+        self.settings = CoreSettings(host="127.0.0.1", port=self.port, **settings)  # type: ignore[arg-type]
+        self.url = f"http://127.0.0.1:{self.port}"
+        self.app = None
+        self._server: uvicorn.Server | None = None
+        self._task: asyncio.Task[None] | None = None
+
+    async def start(self) -> None:
+        self.app = create_app(self.settings)
+        config = uvicorn.Config(
+            self.app,
+            host="127.0.0.1",
+            port=self.port,
+            log_level="warning",
+            ws_max_size=self.settings.max_message_bytes,
+            ws_per_message_deflate=False,
+        )
+        self._server = uvicorn.Server(config)
+        self._server.capture_signals = contextlib.nullcontext  # type: ignore[method-assign]
+        self._task = asyncio.create_task(self._server.serve())
+        await wait_until(lambda: self._server is not None and self._server.started, what="core to start")
+
+    async def stop(self) -> None:
+        if self._server is not None and self._task is not None:
+            self._server.should_exit = True
+            self._server.force_exit = True
+            await self._task
+            self._server = None
+
+    @property
+    def registry(self):  # type: ignore[no-untyped-def]
+        return self.app.state.registry  # type: ignore[union-attr]
+
+
+@pytest.fixture
+async def core() -> AsyncIterator[CoreProcess]:
+    process = CoreProcess()
+    await process.start()
+    yield process
+    await process.stop()
+
+
+@pytest.fixture
+async def start_node(core: CoreProcess) -> AsyncIterator[Callable[[Callable[[NodeSettings], Node]], Awaitable[Node]]]:
+    """Start nodes built by ``factory(settings)`` against ``core``; all are stopped afterwards."""
+    started: list[Node] = []
+
+    async def start(factory: Callable[[NodeSettings], Node], *, registered: bool = True) -> Node:
+        node = factory(NodeSettings(core_url=core.url, port=0, ping_interval_s=1.0, ping_timeout_s=2.0))
+        await node.start()
+        started.append(node)
+        if registered:
+            await wait_until(lambda: node.get_name() in core.registry.nodes, what=f"{node.get_name()} to register")
+        return node
+
+    yield start
+    for node in reversed(started):
+        await node.stop()

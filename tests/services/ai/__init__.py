@@ -1,0 +1,1 @@
+"""Tests for the AI node and its tour planner."""

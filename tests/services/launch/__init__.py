@@ -1,0 +1,1 @@
+"""Tests for the launch supervisor and launch files."""
