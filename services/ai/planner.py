@@ -65,7 +65,9 @@ def plan_tour(
     return Tour(order, _length(origin, targets, order), optimal)
 
 
-def tour_length(start: Sequence[float], points: Sequence[Sequence[float]], order: Sequence[int]) -> float:
+def tour_length(
+    start: Sequence[float], points: Sequence[Sequence[float]], order: Sequence[int]
+) -> float:
     """Length in metres of the open path start -> points[order[0]] -> ... -> points[order[-1]].
 
     ``order`` may visit any subset of the points; an index out of range raises ``ValueError``.
@@ -80,7 +82,9 @@ def tour_length(start: Sequence[float], points: Sequence[Sequence[float]], order
 # --- validation and distances ---------------------------------------------------------------
 
 
-def _validated(start: Sequence[float], points: Sequence[Sequence[float]]) -> tuple[Point2, list[Point2]]:
+def _validated(
+    start: Sequence[float], points: Sequence[Sequence[float]]
+) -> tuple[Point2, list[Point2]]:
     origin = _point(start, "start")
     return origin, [_point(point, f"point {i}") for i, point in enumerate(points)]
 
@@ -90,7 +94,9 @@ def _point(value: Sequence[float], what: str) -> Point2:
         raise ValueError(f"{what} must be (x, y), got {tuple(value)!r}")
     x, y = float(value[0]), float(value[1])
     if not (math.isfinite(x) and math.isfinite(y)):
-        raise ValueError(f"{what} has a non-finite coordinate ({x}, {y}): positions must be finite numbers")
+        raise ValueError(
+            f"{what} has a non-finite coordinate ({x}, {y}): positions must be finite numbers"
+        )
     return x, y
 
 
@@ -159,132 +165,123 @@ def _held_karp(origin: Point2, targets: Sequence[Point2]) -> tuple[int, ...]:
 
 
 # --- heuristic: nearest neighbour, then 2-opt and Or-opt --------------------------------------
+#
+# The heuristic works on a path whose element 0 is the start: the distance matrix gets the start
+# as its last row and column, so no move needs a special case for "the edge out of the start".
+# The path is open, so the last point has no outgoing edge.
 
 
 def _improved(origin: Point2, targets: Sequence[Point2]) -> tuple[int, ...]:
-    """Local search from the nearest-neighbour tour that begins at each point; the best wins.
+    """Local search from the nearest-neighbour tour that begins at each of the nearest points.
 
-    One local optimum is often 5-10 % off; a few dozen starts almost always find the optimum's
-    neighbourhood. The start at the nearest point is the plain nearest-first tour, so the result
-    is never longer than that.
+    One local optimum is often 5-10 % off; a handful of starts usually finds the optimum. The
+    first start is at the nearest point, which is the plain nearest-first tour, so the result is
+    never longer than that.
     """
-    from_start, between = _distances(origin, targets)
     n = len(targets)
-    firsts = sorted(range(n), key=lambda j: (from_start[j], j))[:_MAX_STARTS]
+    nodes = [*targets, origin]
+    dist = [[math.dist(p, q) for q in nodes] for p in nodes]
+    firsts = sorted(range(n), key=lambda j: (dist[n][j], j))[:_MAX_STARTS]
     best: list[int] = []
     best_length = math.inf
     for first in firsts:
-        order = _nearest_neighbour(from_start, between, first)
-        while _two_opt(order, from_start, between) | _or_opt(order, from_start, between):
+        path = _nearest_neighbour(dist, first)
+        while _two_opt(path, dist) | _or_opt(path, dist):
             pass
-        length = _path_length(order, from_start, between)
+        length = sum(dist[a][b] for a, b in itertools.pairwise(path))
         if length < best_length - _MIN_GAIN_M:
-            best, best_length = order, length
-    return tuple(best)
+            best, best_length = path, length
+    return tuple(best[1:])
 
 
-def _path_length(order: list[int], from_start: list[float], between: list[list[float]]) -> float:
-    return from_start[order[0]] + sum(between[a][b] for a, b in itertools.pairwise(order))
-
-
-def _nearest_neighbour(from_start: list[float], between: list[list[float]], first: int) -> list[int]:
-    left = set(range(len(from_start)))
-    here = first
-    order = [here]
-    left.discard(here)
+def _nearest_neighbour(dist: list[list[float]], first: int) -> list[int]:
+    start = len(dist) - 1
+    left = set(range(start))
+    left.discard(first)
+    path = [start, first]
     while left:
-        row = between[here]
+        row = dist[path[-1]]
         here = min(left, key=lambda j: (row[j], j))
-        order.append(here)
+        path.append(here)
         left.discard(here)
-    return order
+    return path
 
 
-def _edge(order: list[int], i: int, j: int, from_start: list[float], between: list[list[float]]) -> float:
-    """Length of the edge into position j from position i (i == -1 is the start)."""
-    return from_start[order[j]] if i < 0 else between[order[i]][order[j]]
-
-
-def _two_opt(order: list[int], from_start: list[float], between: list[list[float]]) -> bool:
-    """Reverse order[i..j] while that shortens the path; True if anything changed."""
-    n = len(order)
+def _two_opt(path: list[int], dist: list[list[float]]) -> bool:
+    """Reverse path[i..j] while that shortens it; True if anything changed."""
+    size = len(path)
     changed = False
     improved = True
     while improved:
         improved = False
-        for i in range(n - 1):
-            before = _edge(order, i - 1, i, from_start, between)
-            for j in range(i + 1, n):
-                # Old edges (i-1, i) and (j, j+1) become (i-1, j) and (i, j+1); no j+1 at the end.
-                old = before
-                new = from_start[order[j]] if i == 0 else between[order[i - 1]][order[j]]
-                if j + 1 < n:
-                    old += between[order[j]][order[j + 1]]
-                    new += between[order[i]][order[j + 1]]
-                if new < old - _MIN_GAIN_M:
-                    order[i : j + 1] = order[i : j + 1][::-1]
-                    before = _edge(order, i - 1, i, from_start, between)
+        for i in range(1, size - 1):
+            for j in range(i + 1, size):
+                # Edges (i-1, i) and (j, j+1) become (i-1, j) and (i, j+1); no j+1 at the end.
+                a, b, c = path[i - 1], path[i], path[j]
+                gain = dist[a][b] - dist[a][c]
+                if j + 1 < size:
+                    d = path[j + 1]
+                    gain += dist[c][d] - dist[b][d]
+                if gain > _MIN_GAIN_M:
+                    path[i : j + 1] = path[j : i - 1 : -1]
                     improved = changed = True
     return changed
 
 
-def _or_opt(order: list[int], from_start: list[float], between: list[list[float]]) -> bool:
+def _or_opt(path: list[int], dist: list[list[float]]) -> bool:
     """Move runs of 1-3 points (either way round) elsewhere while that shortens the path."""
     changed = False
     improved = True
     while improved:
         improved = False
-        n = len(order)
-        for size in (1, 2, 3):
-            for i in range(n - size + 1):
-                gain, move = _best_move(order, i, size, from_start, between)
-                if gain > _MIN_GAIN_M and move is not None:
-                    _apply_move(order, i, size, *move)
+        for run in (1, 2, 3):
+            i = 1
+            while i + run <= len(path):
+                if _move_run(path, dist, i, run):
                     improved = changed = True
-                    break
-            if improved:
-                break
+                i += 1
     return changed
 
 
-def _cost(a: int, b: int, from_start: list[float], between: list[list[float]]) -> float:
-    """Distance from node a (-1: the start) to point b."""
-    return from_start[b] if a < 0 else between[a][b]
-
-
-def _best_move(
-    order: list[int], i: int, size: int, from_start: list[float], between: list[list[float]]
-) -> tuple[float, tuple[int, bool] | None]:
-    """The best place to reinsert order[i:i+size]: (gain, (insert after position, reversed))."""
-    n = len(order)
-    first, last = order[i], order[i + size - 1]
-    prev = order[i - 1] if i > 0 else -1
-    nxt = order[i + size] if i + size < n else None
-    removed = _cost(prev, first, from_start, between)
-    if nxt is not None:
-        removed += between[last][nxt] - _cost(prev, nxt, from_start, between)
-    rest = order[:i] + order[i + size :]
-    best_gain, best_move = 0.0, None
-    # Insert between rest[p-1] and rest[p] (p == 0: right after the start; p == len: at the end).
-    for p in range(len(rest) + 1):
-        a = rest[p - 1] if p > 0 else -1
-        b = rest[p] if p < len(rest) else None
-        for reverse in (False, True):
-            if p == i and not reverse:
-                continue  # the segment where it already is
-            head, tail = (last, first) if reverse else (first, last)
-            added = _cost(a, head, from_start, between)
-            if b is not None:
-                added += between[tail][b] - _cost(a, b, from_start, between)
-            gain = removed - added
-            if gain > best_gain:
-                best_gain, best_move = gain, (p, reverse)
-    return best_gain, best_move
-
-
-def _apply_move(order: list[int], i: int, size: int, p: int, reverse: bool) -> None:
-    segment = order[i : i + size]
+def _move_run(path: list[int], dist: list[list[float]], i: int, run: int) -> bool:
+    """Move path[i:i+run] to where it shortens the path most, if anywhere; True if moved."""
+    size = len(path)
+    first, last = path[i], path[i + run - 1]
+    prev = path[i - 1]
+    end = i + run
+    gain_out = dist[prev][first]
+    if end < size:
+        nxt = path[end]
+        gain_out += dist[last][nxt] - dist[prev][nxt]
+    row_first, row_last = dist[first], dist[last]
+    best_gain = _MIN_GAIN_M
+    best: tuple[int, bool] | None = None
+    # Insert between path[p] and path[p+1] for p outside the run (p = size-1: at the end); the
+    # run reversed may also stay where it is (p = i-1).
+    for p in range(size):
+        if i <= p < end:
+            continue
+        a = path[p]
+        q = p + 1 if p + 1 != i else end
+        b = path[q] if q < size else -1
+        if b >= 0:
+            base = dist[a][b]
+            forward = dist[a][first] + row_last[b] - base
+            backward = dist[a][last] + row_first[b] - base
+        else:
+            forward = dist[a][first]
+            backward = dist[a][last]
+        if p != i - 1 and gain_out - forward > best_gain:
+            best_gain, best = gain_out - forward, (p, False)
+        if gain_out - backward > best_gain:
+            best_gain, best = gain_out - backward, (p, True)
+    if best is None:
+        return False
+    p, reverse = best
+    segment = path[i:end]
     if reverse:
         segment.reverse()
-    del order[i : i + size]
-    order[p:p] = segment
+    del path[i:end]
+    after = p if p < i else p - run
+    path[after + 1 : after + 1] = segment
+    return True

@@ -11,7 +11,9 @@ import pytest
 from services.ai.planner import EXACT_LIMIT, Tour, plan_tour, tour_length
 
 
-def _random_instance(rng: random.Random, n: int) -> tuple[tuple[float, float], list[tuple[float, float]]]:
+def _random_instance(
+    rng: random.Random, n: int
+) -> tuple[tuple[float, float], list[tuple[float, float]]]:
     start = (rng.uniform(-15, 15), rng.uniform(-15, 15))
     return start, [(rng.uniform(-15, 15), rng.uniform(-15, 15)) for _ in range(n)]
 
@@ -19,7 +21,9 @@ def _random_instance(rng: random.Random, n: int) -> tuple[tuple[float, float], l
 def _brute_force(start, points) -> float:
     if not points:
         return 0.0
-    return min(tour_length(start, points, order) for order in itertools.permutations(range(len(points))))
+    return min(
+        tour_length(start, points, order) for order in itertools.permutations(range(len(points)))
+    )
 
 
 def _nearest_first(start, points) -> float:
@@ -177,3 +181,12 @@ def test_the_tour_is_frozen() -> None:
     tour = plan_tour((0.0, 0.0), [(1.0, 0.0)])
     with pytest.raises(AttributeError):
         tour.length_m = 0.0  # type: ignore[misc]
+
+
+def test_heuristic_finds_the_straight_line_through_shuffled_points() -> None:
+    points = [(float(x), 0.0) for x in range(1, 41)]
+    random.Random(3).shuffle(points)
+    tour = plan_tour((0.0, 0.0), points)
+    assert not tour.optimal
+    assert tour.length_m == pytest.approx(40.0)
+    assert [points[i][0] for i in tour.order] == [float(x) for x in range(1, 41)]
