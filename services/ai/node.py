@@ -21,12 +21,14 @@ from shared_models.geometry_msgs import Point, Polygon, PoseStamped
 from shared_models.ros_workshop import AiStatus, FlyCommand
 from shared_models.std_msgs import Header
 from shared_models.std_srvs import Trigger, TriggerResponse
+from sim_server.limits import START_XY_M
 
 __all__ = ["AiNode", "main"]
 
 DEFAULT_PORT = 8004
 TAKE_OFF_DONE_Z_M = 2.5
 VISIT_RADIUS_M = 0.3
+HOME_XY_M = START_XY_M
 STATUS_PERIOD_S = 1.0
 STALE_POSE_S = 1.0
 _RETRY_S = 1.0
@@ -133,7 +135,10 @@ class AiNode(Node):
             self.store.save(key, visited)
             left = [i for i in order if i not in visited]
             self._update(visited=list(visited), tour=left, remaining=len(left))
-        self._update(state="landing", target=-1, message="all boxes visited: landing")
+        # Boxes are 2 m tall: landing over the last one would set the drone down on its roof.
+        # Return to the start, which the world keeps clear of boxes, and land there.
+        self._update(state="landing", target=-1, message="all boxes visited: returning to the start to land")
+        await self._fly_to(HOME_XY_M)
         await self.land.call(Trigger.Request())
         while (await self._fresh_position()).z > 0.1:
             pass
