@@ -6,11 +6,14 @@ The browser is Debian's Chromium driven by Playwright (never a downloaded one), 
 from __future__ import annotations
 
 import contextlib
+import json
+import threading
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import pytest
+from websockets.sync.client import connect
 
 from tests.web_ui.system import System, free_port_block
 
@@ -77,3 +80,23 @@ def dashboard(system: System, browser: object) -> Iterator[tuple[object, Recorde
     yield page, recorder
     with contextlib.suppress(Exception):
         context.close()
+
+
+@pytest.fixture
+def my_point(system: System) -> Iterator[None]:
+    """The seed's send_message node, as a client of the gateway: PointStamped (1, 2, 0) in odom at 10 Hz."""
+    stop = threading.Event()
+    url = f"{system.ws_url}/my_point?type=geometry_msgs/msg/PointStamped&rate=1"
+    message = json.dumps({"header": {"frame_id": "odom"}, "point": {"x": 1.0, "y": 2.0, "z": 0.0}})
+
+    def publish() -> None:
+        with connect(url) as websocket:
+            while not stop.is_set():
+                websocket.send(message)
+                stop.wait(0.1)
+
+    thread = threading.Thread(target=publish, daemon=True)
+    thread.start()
+    yield
+    stop.set()
+    thread.join(timeout=5)

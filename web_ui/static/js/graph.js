@@ -47,7 +47,8 @@ function cell(text, className) {
 }
 
 function shortType(type) {
-  return type.replace("/msg/", "/").replace("/srv/", "/");
+  // Like rostopic's "pkg/Type"; a zero-width space after the slash lets long names wrap there.
+  return type.replace("/msg/", "/\u200b").replace("/srv/", "/\u200b");
 }
 
 /** The Topics tab: topics with types and live rates, services, nodes. */
@@ -73,7 +74,8 @@ export class GraphTables {
     const rows = [...topics].sort((a, b) => a.name.localeCompare(b.name)).map((topic) => {
       const tr = document.createElement("tr");
       tr.dataset.topic = topic.name;
-      tr.title = `inspect ${topic.name}`;
+      tr.dataset.type = topic.type;
+      tr.title = `inspect ${topic.name} (${topic.type})`;
       tr.className = "pickable";
       const rate = typeof topic.rate_hz === "number" ? topic.rate_hz.toFixed(1) : "–";
       const flow = `${topic.publishers.join(", ") || "∅"} → ${topic.subscribers.join(", ") || "∅"}`;
@@ -89,7 +91,8 @@ export class GraphTables {
     const rows = [...services].sort((a, b) => a.name.localeCompare(b.name)).map((service) => {
       const tr = document.createElement("tr");
       tr.dataset.service = service.name;
-      tr.title = `call ${service.name}`;
+      tr.dataset.type = service.type;
+      tr.title = `call ${service.name} (${service.type})`;
       tr.className = "pickable";
       tr.append(cell(service.name, "mono"), cell(shortType(service.type), "dim"), cell(service.node, "dim"));
       tr.addEventListener("click", () => this.onPick(service.name));
