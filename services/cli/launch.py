@@ -26,10 +26,17 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
 
 
 def _launch(args: argparse.Namespace) -> int:
-    from services.launch import LaunchError, LaunchFileError, LaunchOptions, Supervisor, default_launch_file, load_launch_file
-
     if not 1 <= args.base_port <= 65535 - 10:
         raise CliError(f"--base-port must be between 1 and {65535 - 10}, got {args.base_port}")
+    from services.launch import (
+        LaunchError,
+        LaunchFileError,
+        LaunchOptions,
+        Supervisor,
+        default_launch_file,
+        load_launch_file,
+    )
+
     try:
         spec = load_launch_file(args.file or default_launch_file())
     except LaunchFileError as error:

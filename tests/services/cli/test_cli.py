@@ -1,0 +1,119 @@
+"""The `skydeck` CLI as a user runs it: subprocesses against a real core and real nodes."""
+
+from __future__ import annotations
+
+import asyncio
+import os
+import sys
+
+import pytest
+
+from services.runtime import Node
+from shared_models.geometry_msgs import Point, PointStamped, Twist
+from shared_models.std_msgs import Header
+from shared_models.std_srvs import Trigger, TriggerResponse
+from tests.conftest import free_port, wait_until
+
+
+async def skydeck(core_url: str, *args: str, timeout_s: float = 20.0) -> tuple[int, str, str]:
+    """Run `skydeck ARGS` against ``core_url``; returns (exit status, stdout, stderr)."""
+    env = {**os.environ, "SKYDECK_CORE_URL": core_url}
+    process = await asyncio.create_subprocess_exec(
+        sys.executable, "-m", "services.cli", *args, env=env,
+        stdout=asyncio.subprocess.PIPE, stderr=asyncio.subprocess.PIPE,
+    )
+    stdout, stderr = await asyncio.wait_for(process.communicate(), timeout_s)
+    assert b"Traceback" not in stderr, stderr.decode()
+    return process.returncode or 0, stdout.decode(), stderr.decode()
+
+
+class Talker(Node):
+    def __init__(self, settings) -> None:
+        super().__init__("talker", settings=settings)
+        self.publisher = self.create_publisher(PointStamped, "/my_point", 10)
+        self.create_timer(0.02, self.tick)
+        self.create_service(Trigger, "/talker/ping", lambda request: TriggerResponse(success=True, message="pong"))
+        self.twists: list[Twist] = []
+        self.create_subscription(Twist, "/drone/cmd_vel", self.twists.append, 10)
+
+    def tick(self) -> None:
+        header = Header(stamp=self.get_clock().now().to_msg(), frame_id="odom")
+        self.publisher.publish(PointStamped(header=header, point=Point(x=1.0, y=2.0, z=0.0)))
+
+
+async def test_topic_list_info_echo_and_hz(core, start_node) -> None:
+    await start_node(Talker)
+    status, out, _ = await skydeck(core.url, "topic", "list", "-t")
+    assert status == 0 and "/my_point [geometry_msgs/msg/PointStamped]" in out.splitlines()
+    status, out, _ = await skydeck(core.url, "topic", "info", "/my_point")
+    assert "Type: geometry_msgs/msg/PointStamped" in out and " * /talker (http://127.0.0.1:" in out
+    status, out, _ = await skydeck(core.url, "topic", "echo", "/my_point", "--once")
+    assert status == 0 and "frame_id: odom" in out and "x: 1.0" in out and out.rstrip().endswith("---")
+    status, out, _ = await skydeck(core.url, "topic", "hz", "/my_point", "-n", "2")
+    assert status == 0 and "average rate:" in out
+
+
+async def test_topic_pub_once_reaches_subscriber(core, start_node) -> None:
+    talker = await start_node(Talker)
+    status, out, err = await skydeck(
+        core.url, "topic", "pub", "--once", "/drone/cmd_vel", "geometry_msgs/msg/Twist", "{linear: {x: 0.5}}"
+    )
+    assert status == 0, err
+    await wait_until(lambda: any(t.linear.x == 0.5 for t in talker.twists), what="the published Twist")
+
+
+async def test_topic_pub_refuses_bad_data_in_one_line(core) -> None:
+    status, _, err = await skydeck(core.url, "topic", "pub", "--once", "/x", "geometry_msgs/msg/Twist", "{linear: {x: fast}}")
+    assert status == 1 and err.count("\n") == 1 and "linear.x" in err
+    status, _, err = await skydeck(core.url, "topic", "pub", "/x", "geometry_msgs/msg/Twst", "{}")
+    assert status == 1 and "did you mean geometry_msgs/msg/Twist" in err
+
+
+async def test_service_list_info_and_call(core, start_node) -> None:
+    await start_node(Talker)
+    status, out, _ = await skydeck(core.url, "service", "list", "-t")
+    assert "/talker/ping [std_srvs/srv/Trigger]" in out.splitlines()
+    status, out, _ = await skydeck(core.url, "service", "info", "/talker/ping")
+    assert "Node: /talker" in out and "Type: std_srvs/srv/Trigger" in out
+    status, out, _ = await skydeck(core.url, "service", "call", "/talker/ping")
+    assert status == 0 and "success: true" in out and "message: pong" in out
+    status, _, err = await skydeck(core.url, "service", "call", "/talker/pong")
+    assert status == 1 and "no service /talker/pong" in err
+    status, _, err = await skydeck(core.url, "service", "call", "/talker/ping", "{extra: 1}")
+    assert status == 1 and "extra" in err and "422" in err
+
+
+async def test_node_list_and_info_show_pid(core, start_node) -> None:
+    await start_node(Talker)
+    status, out, _ = await skydeck(core.url, "node", "list")
+    assert "/talker" in out.splitlines()
+    status, out, _ = await skydeck(core.url, "node", "info", "talker")
+    assert f"Pid: {os.getpid()}" in out and " * /my_point [geometry_msgs/msg/PointStamped]" in out
+    status, _, err = await skydeck(core.url, "node", "info", "/nobody")
+    assert status == 1 and "skydeck node list" in err
+
+
+async def test_interface_show_prints_ros_text(core) -> None:
+    status, out, _ = await skydeck(core.url, "interface", "show", "geometry_msgs/msg/PointStamped")
+    assert status == 0
+    assert "std_msgs/Header header\n\tuint32 seq\n\tbuiltin_interfaces/Time stamp\n\t\tint32 sec" in out
+    status, out, _ = await skydeck(core.url, "interface", "list", "-s")
+    assert "std_srvs/srv/Trigger" in out.splitlines() and "geometry_msgs/msg/Point" not in out
+    status, _, err = await skydeck(core.url, "interface", "show", "nope/msg/Nothing")
+    assert status == 1 and err.startswith("skydeck: error: unknown interface")
+
+
+async def test_core_not_running_is_one_clear_line() -> None:
+    url = f"http://127.0.0.1:{free_port()}"
+    status, _, err = await skydeck(url, "topic", "list")
+    assert status == 1 and err.count("\n") == 1
+    assert f"cannot reach the core at {url}" in err and "skydeck core" in err
+
+
+@pytest.mark.parametrize(
+    "args",
+    [["topic", "echo", "/bad//name"], ["run", "no_such_node"], ["run", "missing.py"], ["launch", "--base-port", "0"]],
+)
+async def test_bad_arguments_are_one_line(core, args) -> None:
+    status, _, err = await skydeck(core.url, *args)
+    assert status != 0 and err.strip().count("\n") <= 1 and "error" in err
