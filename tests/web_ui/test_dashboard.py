@@ -259,6 +259,15 @@ def test_inspector_echoes_pauses_and_publishes(dashboard, system: System) -> Non
     latest = get_latest(system, "/ui_test_point")
     assert latest is not None and latest["point"]["x"] == 3.5  # type: ignore[index]
 
+    # A frame that is not of the type: the core closes the socket (1007) and the reason is shown.
+    page.click("#inspect-json-details summary")
+    page.fill("#inspect-json", '{"point": {"x": "not a number"}}')
+    page.click("#inspect-send")
+    page.wait_for_function(
+        "document.querySelector('#inspect-result').textContent.includes('1007')", timeout=10_000
+    )
+    assert page.get_attribute("#inspect-result", "data-kind") == "error"
+
 
 def test_banner_and_reconnection_when_the_core_or_the_simulator_goes_away(dashboard, system: System) -> None:  # type: ignore[no-untyped-def]
     # Last in the module: it stops the core, then the simulator.

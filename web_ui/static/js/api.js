@@ -6,7 +6,7 @@ import { getToken, requestToken } from "./auth.js";
 const TOKEN_HINT = "token";
 
 /** fetch() on the core, retried once after asking for a token when it answers 401. */
-export async function apiFetch(path, options = {}) {
+export async function apiFetch(path, options = {}, { userAction = false } = {}) {
   for (let attempt = 0; ; attempt++) {
     const headers = new Headers(options.headers || {});
     const token = getToken();
@@ -14,7 +14,7 @@ export async function apiFetch(path, options = {}) {
     const response = await fetch(path, { ...options, headers });
     if (response.status !== 401 || attempt > 0) return response;
     const detail = await detailOf(response);
-    if (!(await requestToken(detail || "The core needs an access token."))) return response;
+    if (!(await requestToken(detail || "The core needs an access token.", { userAction }))) return response;
   }
 }
 
@@ -43,11 +43,11 @@ export async function getJson(path) {
 export async function callService(name, request = {}) {
   let response;
   try {
-    response = await apiFetch(name, {
-      method: "POST",
-      headers: { "Content-Type": "application/json" },
-      body: JSON.stringify(request),
-    });
+    response = await apiFetch(
+      name,
+      { method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(request) },
+      { userAction: true },
+    );
   } catch (error) {
     return { kind: "error", status: 0, message: `core unreachable at ${location.origin}: ${error.message}`, body: null };
   }
@@ -179,8 +179,8 @@ export class TopicSocket {
     this._setState("closed", code, reason);
     if (code === 1008 && reason.toLowerCase().includes(TOKEN_HINT)) {
       this.onError(`${this.topic}: ${reason}`);
-      await requestToken(reason);
-      this._retry(0);
+      const given = await requestToken(reason); // only publishing needs it: a user action
+      this._retry(given ? 0 : 10_000);
     } else if (code === 1007 || code === 1008 || code === 1003 || code === 1009) {
       // The core refused what we sent or asked for: say why, then read the topic again.
       this.onError(`${this.topic} closed (${code}): ${reason}`);

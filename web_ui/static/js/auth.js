@@ -3,6 +3,7 @@
 
 const STORAGE_KEY = "skydeck.token";
 let pending = null; // one dialog at a time, shared by every caller that hit a 401
+let declined = false; // after a Cancel, background requests stop asking; user actions still may
 
 export function getToken() {
   return sessionStorage.getItem(STORAGE_KEY) || "";
@@ -13,9 +14,13 @@ function setToken(token) {
   else sessionStorage.removeItem(STORAGE_KEY);
 }
 
-/** Ask the user for the token; resolves true when a (new) token was given. */
-export function requestToken(reason = "The core needs an access token for this.") {
+/**
+ * Ask the user for the token; resolves true when a (new) token was given. Background callers
+ * (polls) pass `{ userAction: false }` so a cancelled dialog does not come back every second.
+ */
+export function requestToken(reason = "The core needs an access token for this.", { userAction = true } = {}) {
   if (pending) return pending;
+  if (declined && !userAction) return Promise.resolve(false);
   const dialog = document.getElementById("token-dialog");
   const input = document.getElementById("token-input");
   document.getElementById("token-reason").textContent = reason;
@@ -27,8 +32,10 @@ export function requestToken(reason = "The core needs an access token for this."
         pending = null;
         if (dialog.returnValue === "save" && input.value.trim()) {
           setToken(input.value.trim());
+          declined = false;
           resolve(true);
         } else {
+          declined = true;
           resolve(false);
         }
       },
