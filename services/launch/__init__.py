@@ -1,0 +1,49 @@
+"""``skydeck launch`` (roslaunch): launch files, and the supervisor that runs them.
+
+    from services.launch import LaunchOptions, run_launch
+    exit_code = run_launch("my_launch.yaml", LaunchOptions(base_port=9000, exclude=("ai",)))
+
+Errors: ``LaunchError`` (a launch cannot go ahead), and its subclass ``LaunchFileError`` (the
+launch file is missing or wrong); both carry one line for the user.
+"""
+
+from services.launch.errors import LaunchError, LaunchFileError
+from services.launch.plan import (
+    DEFAULT_BASE_PORT,
+    LaunchOptions,
+    NodePlan,
+    core_url,
+    default_command,
+    plan_launch,
+)
+from services.launch.spec import (
+    BUILTIN_RUNS,
+    PLACEHOLDERS,
+    LaunchSpec,
+    NodeSpec,
+    default_launch_file,
+    load_launch_file,
+)
+from services.launch.supervisor import CommandFor, NodeState, NodeStatus, Supervisor, run_launch
+
+__all__ = [
+    "BUILTIN_RUNS",
+    "DEFAULT_BASE_PORT",
+    "PLACEHOLDERS",
+    "CommandFor",
+    "LaunchError",
+    "LaunchFileError",
+    "LaunchOptions",
+    "LaunchSpec",
+    "NodePlan",
+    "NodeSpec",
+    "NodeState",
+    "NodeStatus",
+    "Supervisor",
+    "core_url",
+    "default_command",
+    "default_launch_file",
+    "load_launch_file",
+    "plan_launch",
+    "run_launch",
+]

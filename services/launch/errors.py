@@ -1,0 +1,41 @@
+"""The launcher's errors, each one line that names the cause.
+
+LaunchError              a launch cannot go ahead or a node cannot start at all
+└── LaunchFileError      the launch file is missing, not YAML, or not a valid launch file
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+__all__ = ["LaunchError", "LaunchFileError"]
+
+
+class LaunchError(Exception):
+    """A launch cannot go ahead: bad options, a port in use, or a node that never became ready.
+
+    ``node`` names the node at fault (if one is), ``exit_code`` is its exit status if it exited,
+    and ``stderr_tail`` holds its last lines of standard error.
+    """
+
+    def __init__(
+        self,
+        message: str,
+        *,
+        node: str | None = None,
+        exit_code: int | None = None,
+        stderr_tail: tuple[str, ...] = (),
+    ) -> None:
+        super().__init__(message)
+        self.node = node
+        self.exit_code = exit_code
+        self.stderr_tail = stderr_tail
+
+
+class LaunchFileError(LaunchError):
+    """The launch file at ``path`` cannot be used; ``problem`` says where and why."""
+
+    def __init__(self, path: Path | str, problem: str) -> None:
+        super().__init__(f"{path}: {problem}")
+        self.path = Path(path)
+        self.problem = problem

@@ -1,0 +1,272 @@
+"""The launch file: which processes ``skydeck launch`` starts, on which ports, with which flags.
+
+    # The workshop system: the core, the simulator and the three workshop nodes.
+    nodes:
+      - name: core
+        run: core            # `skydeck core`
+        port_offset: 0
+      - name: sim
+        run: sim             # a built-in node or a path to a .py node file
+        port_offset: 1
+        args: ["--speed", "{speed}", "--seed", "{seed}", "--boxes", "{boxes}"]
+
+Each node listens on ``base_port + port_offset``. Arguments and environment values may use the
+placeholders ``{speed}``, ``{seed}``, ``{boxes}`` and ``{base_port}``, filled from the launch
+options (``{{`` is a literal brace). ``load_launch_file`` turns every problem into one
+``LaunchFileError`` line that names the file and the place, e.g.
+``launch.yaml: nodes[2].port_offset: Input should be greater than or equal to 0``.
+"""
+
+from __future__ import annotations
+
+import string
+from pathlib import Path
+from typing import Annotated, Any
+
+import yaml
+from pydantic import (
+    AfterValidator,
+    BaseModel,
+    ConfigDict,
+    Field,
+    ValidationError,
+    field_validator,
+    model_validator,
+)
+from pydantic_core import ErrorDetails, PydanticCustomError
+
+from services.cli.run import BUILTIN_NODES
+from services.launch.errors import LaunchFileError
+
+__all__ = [
+    "BUILTIN_RUNS",
+    "PLACEHOLDERS",
+    "LaunchSpec",
+    "NodeSpec",
+    "default_launch_file",
+    "load_launch_file",
+]
+
+CORE_RUN = "core"
+BUILTIN_RUNS = (CORE_RUN, *BUILTIN_NODES)
+"""What ``run`` may name besides a path to a .py file."""
+PLACEHOLDERS = ("speed", "seed", "boxes", "base_port")
+"""The ``{name}`` placeholders that arguments and environment values may use."""
+
+# A node's name prefixes its output lines and is used by --exclude, so it stays one plain token.
+_NAME_PATTERN = r"^[A-Za-z][A-Za-z0-9_-]*$"
+_RESERVED_NAMES = ("launch",)  # the supervisor's own lines start with "[launch]"
+
+
+def _check_placeholders(text: str) -> str:
+    try:
+        fields = list(string.Formatter().parse(text))
+    except ValueError as error:
+        raise PydanticCustomError(
+            "placeholder", f"{error} in {text!r} (write {{{{ or }}}} for a literal brace)"
+        ) from None
+    for _literal, field, spec, conversion in fields:
+        if field is None:
+            continue
+        if field not in PLACEHOLDERS:
+            known = ", ".join(f"{{{name}}}" for name in PLACEHOLDERS)
+            raise PydanticCustomError(
+                "placeholder", f"unknown placeholder {{{field}}} in {text!r}; known: {known}"
+            )
+        if spec or conversion:
+            raise PydanticCustomError(
+                "placeholder", f"placeholders take no format or conversion: write {{{field}}}"
+            )
+    return text
+
+
+_Template = Annotated[str, AfterValidator(_check_placeholders)]
+_EnvName = Annotated[str, Field(pattern=r"^[A-Za-z_][A-Za-z0-9_]*$")]
+
+
+class NodeSpec(BaseModel):
+    """One process of a launch: what to run, its port offset, flags, environment and policies."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True, coerce_numbers_to_str=True)
+
+    name: str = Field(pattern=_NAME_PATTERN, max_length=64, description="unique; prefixes output")
+    run: str = Field(min_length=1, description="core, a built-in node, or a path to a .py file")
+    port_offset: int = Field(ge=0, le=1000, description="the node listens on base_port + this")
+    args: tuple[_Template, ...] = Field(default=(), description="extra flags; may use placeholders")
+    env: dict[_EnvName, _Template] = Field(default_factory=dict, description="extra environment")
+    respawn: bool = Field(default=True, description="restart the node when it dies")
+    ready_timeout_s: float = Field(default=20.0, gt=0, le=600, description="time to answer /health")
+
+    @field_validator("name")
+    @classmethod
+    def _not_reserved(cls, value: str) -> str:
+        if value in _RESERVED_NAMES:
+            raise PydanticCustomError("reserved", f"the name {value!r} is reserved; choose another")
+        return value
+
+    @field_validator("run")
+    @classmethod
+    def _known_run(cls, value: str) -> str:
+        if value in BUILTIN_RUNS or value.endswith(".py"):
+            return value
+        raise PydanticCustomError(
+            "unknown_run",
+            f"{value!r} is neither a built-in ({', '.join(BUILTIN_RUNS)}) nor a path to a .py file",
+        )
+
+    @property
+    def is_core(self) -> bool:
+        """True for the node that runs the core (``run: core``)."""
+        return self.run == CORE_RUN
+
+
+class LaunchSpec(BaseModel):
+    """A whole launch: the nodes in start order (the core is started first wherever it is listed)."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+    nodes: tuple[NodeSpec, ...]
+
+    @model_validator(mode="after")
+    def _check_nodes(self) -> LaunchSpec:
+        if not self.nodes:
+            raise PydanticCustomError("empty", "nodes: a launch needs at least one node")
+        names: dict[str, int] = {}
+        offsets: dict[int, int] = {}
+        cores: list[int] = []
+        for index, node in enumerate(self.nodes):
+            if node.name in names:
+                raise PydanticCustomError(
+                    "duplicate",
+                    f"nodes[{index}].name: {node.name!r} is already the name of nodes[{names[node.name]}]",
+                )
+            if node.port_offset in offsets:
+                other = self.nodes[offsets[node.port_offset]]
+                raise PydanticCustomError(
+                    "duplicate",
+                    f"nodes[{index}].port_offset: {node.port_offset} is already used by "
+                    f"nodes[{offsets[node.port_offset]}] ({other.name})",
+                )
+            names[node.name] = index
+            offsets[node.port_offset] = index
+            if node.is_core:
+                cores.append(index)
+        if len(cores) > 1:
+            raise PydanticCustomError(
+                "duplicate",
+                f"nodes[{cores[1]}].run: only one node may run the core (nodes[{cores[0]}] does)",
+            )
+        return self
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """The node names in the order listed."""
+        return tuple(node.name for node in self.nodes)
+
+
+def default_launch_file() -> Path:
+    """The workshop system's launch file: core, sim, perception, control and ai."""
+    return Path(__file__).with_name("workshop.yaml")
+
+
+def load_launch_file(path: str | Path) -> LaunchSpec:
+    """Read and check a launch file; relative ``run`` paths are taken from the file's folder.
+
+    Raises ``LaunchFileError`` with one line naming the file and the problem.
+
+        >>> spec = load_launch_file(default_launch_file())
+        >>> spec.names
+        ('core', 'sim', 'perception', 'control', 'ai')
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise LaunchFileError(path, "no such launch file") from None
+    except IsADirectoryError:
+        raise LaunchFileError(path, "is a folder, not a launch file") from None
+    except (OSError, UnicodeDecodeError) as error:
+        raise LaunchFileError(path, f"cannot read it: {error}") from None
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as error:
+        raise LaunchFileError(path, _yaml_problem(error)) from None
+    if data is None:
+        raise LaunchFileError(path, "the file is empty: expected a mapping with a `nodes:` list")
+    if not isinstance(data, dict):
+        raise LaunchFileError(
+            path, f"expected a mapping with a `nodes:` list at the top, got a {_kind(data)}"
+        )
+    try:
+        spec = LaunchSpec.model_validate(data)
+    except ValidationError as error:
+        raise LaunchFileError(path, _validation_problem(error)) from None
+    return _resolve_paths(spec, path)
+
+
+# --- helpers --------------------------------------------------------------------------------
+
+
+def _resolve_paths(spec: LaunchSpec, path: Path) -> LaunchSpec:
+    folder = path.resolve().parent
+    nodes = []
+    for index, node in enumerate(spec.nodes):
+        if node.run in BUILTIN_RUNS:
+            nodes.append(node)
+            continue
+        file = (folder / node.run).resolve()
+        if not file.is_file():
+            raise LaunchFileError(path, f"nodes[{index}].run: no such node file {file}")
+        nodes.append(node.model_copy(update={"run": str(file)}))
+    return spec.model_copy(update={"nodes": tuple(nodes)})
+
+
+def _yaml_problem(error: yaml.YAMLError) -> str:
+    mark = getattr(error, "problem_mark", None)
+    problem = getattr(error, "problem", None) or str(error).splitlines()[0]
+    if mark is not None:
+        return f"YAML syntax error at line {mark.line + 1}, column {mark.column + 1}: {problem}"
+    return f"YAML syntax error: {problem}"
+
+
+def _validation_problem(error: ValidationError) -> str:
+    errors = error.errors(include_url=False)
+    first = errors[0]
+    problem = _one_error(first)
+    if len(errors) > 1:
+        problem += f" (and {len(errors) - 1} more)"
+    return problem
+
+
+def _one_error(error: ErrorDetails) -> str:
+    location = _location(error["loc"])
+    kind = error["type"]
+    value = error.get("input")
+    if kind == "extra_forbidden":
+        model = LaunchSpec if len(error["loc"]) == 1 else NodeSpec
+        message = f"unknown field (allowed: {', '.join(model.model_fields)})"
+    elif kind == "missing":
+        message = "missing (required)"
+    elif kind == "string_type" and isinstance(value, dict) and len(value) == 1:
+        # YAML reads an unquoted {speed} as a mapping; say how to write it.
+        name = next(iter(value))
+        message = f'a placeholder must be quoted in YAML: write "{{{name}}}"'
+    else:
+        message = error["msg"]
+    return f"{location}: {message}" if location else message
+
+
+def _location(loc: tuple[int | str, ...]) -> str:
+    text = ""
+    for part in loc:
+        if isinstance(part, int):
+            text += f"[{part}]"
+        else:
+            text += f".{part}" if text else part
+    return text
+
+
+def _kind(value: Any) -> str:
+    return {list: "list", str: "string", int: "number", float: "number", bool: "boolean"}.get(
+        type(value), type(value).__name__
+    )
