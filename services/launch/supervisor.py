@@ -1,0 +1,572 @@
+"""The supervisor behind ``skydeck launch`` (roslaunch): start, watch, respawn and stop nodes.
+
+    spec = load_launch_file(default_launch_file())
+    exit_code = asyncio.run(Supervisor(spec, LaunchOptions(base_port=9000)).run())
+
+Nodes start one at a time in launch order, the core first; each must answer
+``GET /health`` with 200 before the next starts. Every child runs in its own session (its own
+process group), so stopping a node kills whatever it started too, and a Ctrl-C in the terminal
+reaches only the supervisor, which then stops the nodes in reverse order: SIGTERM to the group,
+up to ``stop_timeout_s`` to exit, then SIGKILL. Children's output lines are forwarded with a
+``[name]`` prefix; the supervisor's own lines start with ``[launch]``.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import enum
+import os
+import shlex
+import signal
+import socket
+import subprocess
+import sys
+import time
+from collections import deque
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TextIO
+
+import httpx
+
+from services.launch.errors import LaunchError
+from services.launch.plan import LaunchOptions, NodePlan, core_url, default_command, plan_launch
+from services.launch.spec import LaunchSpec, default_launch_file, load_launch_file
+
+__all__ = ["CommandFor", "NodeState", "NodeStatus", "Supervisor", "run_launch"]
+
+CommandFor = Callable[[NodePlan], Sequence[str]]
+"""Turns a node's plan into the argv that starts it (``default_command`` runs the skydeck CLI)."""
+
+# -- readiness ----------------------------------------------------------------------------------
+POLL_INTERVAL_S = 0.05
+_HEALTH_REQUEST_TIMEOUT_S = 1.0
+# -- respawn ------------------------------------------------------------------------------------
+BACKOFF_FIRST_S = 0.5
+BACKOFF_MAX_S = 8.0
+BACKOFF_RESET_AFTER_S = 30.0
+"""A node that ran this long before dying is respawned after the first backoff again."""
+# -- stopping -----------------------------------------------------------------------------------
+STOP_TIMEOUT_S = 5.0
+_DRAIN_TIMEOUT_S = 1.0
+# -- output -------------------------------------------------------------------------------------
+_STDERR_TAIL_LINES = 20
+_LINE_LIMIT_BYTES = 2**20  # longer lines are forwarded in pieces
+
+
+class NodeState(enum.Enum):
+    """Where a node is in its life under the supervisor."""
+
+    WAITING = "waiting"  # not started yet
+    STARTING = "starting"  # running, not answering /health yet
+    READY = "ready"
+    BACKOFF = "backoff"  # died; respawning after a pause
+    EXITED = "exited"  # died and is not respawned
+    STOPPED = "stopped"  # stopped by the supervisor
+
+
+@dataclass(frozen=True)
+class NodeStatus:
+    """A snapshot of one node: ``ready_count`` counts how often it has become ready."""
+
+    name: str
+    url: str
+    state: NodeState
+    pid: int | None
+    ready_count: int
+    restarts: int
+    exit_code: int | None
+
+
+class _Outcome(enum.Enum):
+    READY = "ready"
+    EXITED = "exited"
+    TIMEOUT = "timeout"
+    STOPPING = "stopping"
+
+
+class _NodeProcess(asyncio.SubprocessProtocol):
+    """One run of a node: splits its output into lines and says when it has exited.
+
+    Exit is reported as soon as the process ends, even while a grandchild still holds its pipes
+    (``asyncio.subprocess.Process.wait`` waits for the pipes too on Python 3.11).
+    """
+
+    def __init__(self, on_line: Callable[[str, bool], None]) -> None:
+        loop = asyncio.get_running_loop()
+        self.exited: asyncio.Future[int] = loop.create_future()
+        self.finished: asyncio.Future[None] = loop.create_future()  # exited and pipes closed
+        self.transport: asyncio.SubprocessTransport | None = None
+        self._on_line = on_line
+        self._buffers = {1: bytearray(), 2: bytearray()}
+
+    def connection_made(self, transport: asyncio.BaseTransport) -> None:
+        self.transport = transport  # type: ignore[assignment]
+
+    def pipe_data_received(self, fd: int, data: bytes | bytearray) -> None:
+        buffer = self._buffers[fd]
+        buffer += data
+        start = 0
+        while (end := buffer.find(b"\n", start)) >= 0:
+            self._emit(fd, buffer[start:end])
+            start = end + 1
+        del buffer[:start]
+        if len(buffer) > _LINE_LIMIT_BYTES:
+            self._emit(fd, buffer)
+            buffer.clear()
+
+    def pipe_connection_lost(self, fd: int, exc: Exception | None) -> None:
+        if buffer := self._buffers.get(fd):
+            self._emit(fd, buffer)
+            buffer.clear()
+
+    def process_exited(self) -> None:
+        code = self.transport.get_returncode() if self.transport else None
+        if not self.exited.done():
+            self.exited.set_result(-1 if code is None else code)
+
+    def connection_lost(self, exc: Exception | None) -> None:
+        if not self.finished.done():
+            self.finished.set_result(None)
+
+    def _emit(self, fd: int, raw: bytes | bytearray) -> None:
+        self._on_line(raw.decode("utf-8", errors="replace").rstrip("\r"), fd == 2)
+
+
+class _Child:
+    """The supervisor's record of one node and its current process."""
+
+    def __init__(self, plan: NodePlan) -> None:
+        self.plan = plan
+        self.state = NodeState.WAITING
+        self.process: _NodeProcess | None = None
+        self.pid: int | None = None
+        self.watch: asyncio.Task[None] | None = None
+        self.started_at = 0.0
+        self.starts = 0
+        self.ready_count = 0
+        self.exit_code: int | None = None
+        self.backoff_s = BACKOFF_FIRST_S
+        self.stderr_tail: deque[str] = deque(maxlen=_STDERR_TAIL_LINES)
+
+    @property
+    def exited(self) -> asyncio.Future[int] | None:
+        return self.process.exited if self.process else None
+
+    @property
+    def running(self) -> bool:
+        return self.process is not None and not self.process.exited.done()
+
+
+class Supervisor:
+    """Starts a launch's nodes, respawns the ones that die and stops them all on request.
+
+    ``command_for`` builds each node's argv (tests substitute small programs); ``out`` receives
+    every line (default: standard output). Raises ``LaunchError`` at once for bad options.
+    """
+
+    def __init__(
+        self,
+        spec: LaunchSpec,
+        options: LaunchOptions | None = None,
+        *,
+        command_for: CommandFor = default_command,
+        out: TextIO | None = None,
+        stop_timeout_s: float = STOP_TIMEOUT_S,
+    ) -> None:
+        given = options or LaunchOptions()
+        self.options = given.with_seed()
+        self.plans = plan_launch(spec, self.options)
+        self.core_url = core_url(spec, self.options)
+        self._show_seed = given.seed is None and any(
+            "{seed}" in text for node in spec.nodes for text in (*node.args, *node.env.values())
+        )
+        self._command_for = command_for
+        self._out = out
+        self._stop_timeout_s = stop_timeout_s
+        self._children = {plan.name: _Child(plan) for plan in self.plans}
+        self._http: httpx.AsyncClient | None = None
+        self._started = False
+        self._stopping = False
+        self._stopped = False
+        self._stop_requested = asyncio.Event()
+        self._start_idle = asyncio.Event()
+        self._start_idle.set()
+        self._changed = asyncio.Event()
+
+    # -- public ---------------------------------------------------------------------------------
+
+    async def start(self) -> None:
+        """Start every node in order and wait until each is ready; respawning starts now.
+
+        Raises ``LaunchError`` (after stopping what did start) if a port is taken or a node
+        does not become ready in time on its first start. Returns early if a stop is requested.
+        """
+        if self._started:
+            raise LaunchError("this launch was already started; create a new Supervisor")
+        self._started = True
+        try:
+            try:
+                self._start_idle.clear()
+                self._check_ports_free()
+                self._http = httpx.AsyncClient(timeout=_HEALTH_REQUEST_TIMEOUT_S, trust_env=False)
+                self._announce()
+                for child in self._children.values():
+                    if self._stopping:
+                        return
+                    await self._start_first(child)
+            finally:
+                self._start_idle.set()
+        except BaseException:
+            await self.stop()
+            raise
+        if not self._stopping:
+            self._say(f"all {len(self._children)} nodes up; Ctrl-C stops them")
+
+    async def stop(self) -> None:
+        """Stop every node, last started first, and their process groups; safe to call twice."""
+        self.request_stop()
+        await self._start_idle.wait()
+        if self._stopped:
+            return
+        self._stopped = True
+        running = [child for child in self._children.values() if child.process is not None]
+        if running:
+            self._say(f"stopping {len(running)} nodes")
+        for child in reversed(list(self._children.values())):
+            await self._terminate(child, report=True)
+            if child.watch is not None:
+                await child.watch  # returns promptly: it sees the stop request
+            await self._terminate(child)  # a respawn racing the stop request
+            if child.process is not None:
+                child.state = NodeState.STOPPED
+        if self._http is not None:
+            await self._http.aclose()
+        if running:
+            self._say("all nodes stopped")
+        self._notify()
+
+    def request_stop(self) -> None:
+        """Ask for a stop without waiting for it (what the signal handlers do); ``stop`` finishes it."""
+        self._stopping = True
+        self._stop_requested.set()
+        self._notify()
+
+    async def run(self) -> int:
+        """Start, supervise until SIGINT/SIGTERM (or ``request_stop``), stop; 0 on a clean stop.
+
+        A second signal while stopping kills every node at once.
+        """
+        loop = asyncio.get_running_loop()
+        handled: list[signal.Signals] = []
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            with contextlib.suppress(NotImplementedError, RuntimeError, ValueError):
+                loop.add_signal_handler(sig, self._on_signal, sig)
+                handled.append(sig)
+        try:
+            await self.start()
+            await self._stop_requested.wait()
+        finally:
+            await self.stop()
+            for sig in handled:
+                loop.remove_signal_handler(sig)
+        return 0
+
+    def status(self, name: str) -> NodeStatus:
+        """A snapshot of node ``name``."""
+        child = self._child(name)
+        return NodeStatus(
+            name=child.plan.name,
+            url=child.plan.url,
+            state=child.state,
+            pid=child.pid if child.running else None,
+            ready_count=child.ready_count,
+            restarts=max(child.starts - 1, 0),
+            exit_code=child.exit_code,
+        )
+
+    async def wait_ready(self, name: str, *, count: int = 1) -> NodeStatus:
+        """Wait until node ``name`` has become ready ``count`` times in all (1: first start).
+
+        Raises ``LaunchError`` if that cannot happen any more: the launch is stopping or the
+        node died and is not respawned. Wrap in ``asyncio.timeout`` to bound the wait.
+        """
+        child = self._child(name)
+        while child.ready_count < count:
+            if self._stopping:
+                raise LaunchError(f"{name} will not become ready: the launch is stopping")
+            if child.state is NodeState.EXITED:
+                raise LaunchError(f"{name} exited (code {child.exit_code}) and is not respawned")
+            changed = self._changed
+            await changed.wait()
+        return self.status(name)
+
+    # -- starting -----------------------------------------------------------------------------
+
+    def _announce(self) -> None:
+        nodes = ", ".join(f"{plan.name} :{plan.port}" for plan in self.plans)
+        self._say(f"starting {nodes}; core at {self.core_url}")
+        if self._show_seed:
+            seed = self.options.seed
+            self._say(f"world seed {seed} (--seed {seed} gives the same world again)")
+
+    def _check_ports_free(self) -> None:
+        for plan in self.plans:
+            with socket.socket() as probe:
+                probe.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+                try:
+                    probe.bind(("127.0.0.1", plan.port))
+                except OSError:
+                    raise LaunchError(
+                        f"port {plan.port} for {plan.name} is already in use: is another launch or "
+                        "node running? stop it or choose another --base-port",
+                        node=plan.name,
+                    ) from None
+
+    async def _start_first(self, child: _Child) -> None:
+        plan = child.plan
+        await self._spawn(child)
+        outcome = await self._wait_healthy(child)
+        if outcome is _Outcome.READY:
+            self._ready(child)
+            child.watch = asyncio.create_task(self._watch(child), name=f"launch-watch-{plan.name}")
+        elif outcome is _Outcome.EXITED:
+            code = await self._reap(child)
+            last = f": {child.stderr_tail[-1]}" if child.stderr_tail else ""
+            raise LaunchError(
+                f"{plan.name} exited with {_describe_exit(code)} before it was ready{last}",
+                node=plan.name,
+                exit_code=code,
+                stderr_tail=tuple(child.stderr_tail),
+            )
+        elif outcome is _Outcome.TIMEOUT:
+            raise LaunchError(
+                f"{plan.name} (pid {child.pid}) did not answer {plan.url}/health within "
+                f"{plan.ready_timeout_s:g} s; is it serving on port {plan.port}?",
+                node=plan.name,
+                stderr_tail=tuple(child.stderr_tail),
+            )
+
+    async def _spawn(self, child: _Child) -> None:
+        plan = child.plan
+        argv = [str(part) for part in self._command_for(plan)]
+        env = {**os.environ, "SKYDECK_CORE_URL": self.core_url, "PYTHONUNBUFFERED": "1", **plan.env}
+        prefix = f"[{plan.name}] "
+
+        def on_line(text: str, is_stderr: bool) -> None:
+            if is_stderr and text.strip():
+                child.stderr_tail.append(text)
+            self._write(prefix + text)
+
+        loop = asyncio.get_running_loop()
+        try:
+            transport, process = await loop.subprocess_exec(
+                lambda: _NodeProcess(on_line),
+                *argv,
+                stdin=subprocess.DEVNULL,
+                stdout=subprocess.PIPE,
+                stderr=subprocess.PIPE,
+                env=env,
+                start_new_session=True,  # its own process group: killed as a whole, deaf to Ctrl-C
+            )
+        except OSError as error:
+            raise LaunchError(
+                f"cannot start {plan.name} ({shlex.join(argv)}): {error}", node=plan.name
+            ) from None
+        child.process = process
+        child.pid = transport.get_pid()
+        child.started_at = time.monotonic()
+        child.starts += 1
+        child.state = NodeState.STARTING
+        child.stderr_tail.clear()
+        self._notify()
+
+    async def _wait_healthy(self, child: _Child) -> _Outcome:
+        """Poll /health until 200, the process exits, the deadline passes or a stop is asked."""
+        if self._http is None or child.exited is None:
+            raise LaunchError("internal: node polled before it was started")
+        url = f"{child.plan.url}/health"
+        deadline = time.monotonic() + child.plan.ready_timeout_s
+        while True:
+            if child.exited.done():
+                return _Outcome.EXITED
+            if self._stopping:
+                return _Outcome.STOPPING
+            with contextlib.suppress(httpx.HTTPError):
+                response = await self._http.get(url)
+                if response.status_code == 200:
+                    return _Outcome.READY
+            if time.monotonic() >= deadline:
+                return _Outcome.TIMEOUT
+            await asyncio.wait({child.exited}, timeout=POLL_INTERVAL_S)
+
+    def _ready(self, child: _Child) -> None:
+        child.state = NodeState.READY
+        child.ready_count += 1
+        pid = child.pid
+        took = time.monotonic() - child.started_at
+        again = f", restart {child.starts - 1}" if child.starts > 1 else ""
+        self._say(f"{child.plan.name} ready at {child.plan.url} (pid {pid}, {took:.1f} s{again})")
+        self._notify()
+
+    # -- respawning ---------------------------------------------------------------------------
+
+    async def _watch(self, child: _Child) -> None:
+        """After a node's first start: respawn it whenever it dies, until the launch stops."""
+        plan = child.plan
+        while True:
+            if child.exited is None:
+                return
+            # stop() terminates the process before it awaits this task, so this wait ends too.
+            await asyncio.wait({child.exited})
+            if self._stopping:
+                return
+            ran_s = time.monotonic() - child.started_at
+            code = await self._reap(child)
+            if not plan.respawn:
+                child.state = NodeState.EXITED
+                self._say(
+                    f"{plan.name} exited with {_describe_exit(code)}; not respawned (respawn: false)"
+                )
+                self._notify()
+                return
+            if ran_s >= BACKOFF_RESET_AFTER_S:
+                child.backoff_s = BACKOFF_FIRST_S
+            self._say(
+                f"{plan.name} exited with {_describe_exit(code)} after {ran_s:.1f} s; "
+                f"respawning in {child.backoff_s:g} s"
+            )
+            if not await self._respawn(child):
+                return
+
+    async def _respawn(self, child: _Child) -> bool:
+        """Restart the node after its backoff until it is ready; False if the launch stops first."""
+        plan = child.plan
+        while True:
+            child.state = NodeState.BACKOFF
+            self._notify()
+            with contextlib.suppress(TimeoutError):
+                await asyncio.wait_for(self._stop_requested.wait(), child.backoff_s)
+            if self._stopping:
+                return False
+            child.backoff_s = min(child.backoff_s * 2, BACKOFF_MAX_S)
+            try:
+                await self._spawn(child)
+            except LaunchError as error:
+                self._say(f"{error}; trying again in {child.backoff_s:g} s")
+                continue
+            outcome = await self._wait_healthy(child)
+            if outcome is _Outcome.READY:
+                self._ready(child)
+                return True
+            if outcome is _Outcome.STOPPING:
+                return False
+            if outcome is _Outcome.EXITED:
+                code = await self._reap(child)
+                why = f"exited with {_describe_exit(code)} before it was ready"
+            else:
+                await self._terminate(child)
+                why = f"did not answer /health within {plan.ready_timeout_s:g} s"
+            self._say(f"{plan.name} {why}; respawning in {child.backoff_s:g} s")
+
+    # -- stopping -----------------------------------------------------------------------------
+
+    async def _terminate(self, child: _Child, *, report: bool = False) -> None:
+        """SIGTERM the node's process group, SIGKILL it after the stop timeout; then reap."""
+        if child.pid is None or child.exited is None:
+            return
+        if child.running:
+            _signal_group(child.pid, signal.SIGTERM)
+            await asyncio.wait({child.exited}, timeout=self._stop_timeout_s)
+            if child.running:
+                self._say(
+                    f"{child.plan.name} did not stop within {self._stop_timeout_s:g} s; killing it"
+                )
+                _signal_group(child.pid, signal.SIGKILL)
+                await child.exited
+            if report:
+                self._say(f"{child.plan.name} stopped ({_describe_exit(child.exited.result())})")
+        await self._reap(child)
+
+    async def _reap(self, child: _Child) -> int:
+        """The exit code of the node's finished process, after killing what is left of its group
+        (grandchildren) and forwarding the rest of its output."""
+        process = child.process
+        if process is None or child.pid is None:
+            raise LaunchError("internal: reaping a node that never started")
+        code = await process.exited
+        child.exit_code = code
+        _signal_group(child.pid, signal.SIGKILL)
+        # Its last output, unless something outside its group still holds the pipes.
+        await asyncio.wait({process.finished}, timeout=_DRAIN_TIMEOUT_S)
+        if process.transport is not None:
+            process.transport.close()
+        return code
+
+    def _on_signal(self, sig: signal.Signals) -> None:
+        if self._stopping:
+            self._say(f"{sig.name} again: killing every node now")
+            for child in self._children.values():
+                if child.running and child.pid is not None:
+                    _signal_group(child.pid, signal.SIGKILL)
+            return
+        self._say(f"{sig.name}: stopping")
+        self.request_stop()
+
+    # -- output -------------------------------------------------------------------------------
+
+    def _say(self, text: str) -> None:
+        self._write(f"[launch] {text}")
+
+    def _write(self, line: str) -> None:
+        out = self._out or sys.stdout
+        # A closed or broken terminal must not stop the supervision of the nodes.
+        with contextlib.suppress(OSError, ValueError):
+            out.write(line + "\n")
+            out.flush()
+
+    # -- helpers ------------------------------------------------------------------------------
+
+    def _child(self, name: str) -> _Child:
+        try:
+            return self._children[name]
+        except KeyError:
+            raise LaunchError(
+                f"no node {name!r} in this launch; its nodes are: {', '.join(self._children)}"
+            ) from None
+
+    def _notify(self) -> None:
+        """Wake every ``wait_ready`` so it re-checks its condition."""
+        self._changed.set()
+        self._changed = asyncio.Event()
+
+
+def run_launch(
+    path: str | Path | None = None,
+    options: LaunchOptions | None = None,
+    *,
+    out: TextIO | None = None,
+) -> int:
+    """``skydeck launch``: load the launch file (default: the workshop's) and run it until stopped.
+
+    Raises ``LaunchError`` (``LaunchFileError`` for the file) with one line to show the user.
+    """
+    spec = load_launch_file(default_launch_file() if path is None else path)
+    return asyncio.run(Supervisor(spec, options, out=out).run())
+
+
+def _signal_group(pgid: int, sig: signal.Signals) -> None:
+    # The group's id is the leader's pid (start_new_session). The id stays reserved while any
+    # member lives, so this cannot hit an unrelated process; an empty group is simply gone.
+    with contextlib.suppress(ProcessLookupError, PermissionError):
+        os.killpg(pgid, sig)
+
+
+def _describe_exit(code: int) -> str:
+    if code < 0:
+        with contextlib.suppress(ValueError):
+            return f"signal {signal.Signals(-code).name}"
+        return f"signal {-code}"
+    return f"exit code {code}"
