@@ -18,6 +18,7 @@ import httpx
 import pytest
 
 from services.launch import (
+    CommandFor,
     LaunchError,
     LaunchOptions,
     LaunchSpec,
@@ -148,12 +149,18 @@ class Launch:
         self.out = io.StringIO()
         self.supervisors: list[Supervisor] = []
 
-    def __call__(self, *nodes: NodeSpec, stop_timeout_s: float = 5.0, **options: object) -> Supervisor:
+    def __call__(
+        self,
+        *nodes: NodeSpec,
+        stop_timeout_s: float = 5.0,
+        command: CommandFor | None = None,
+        **options: object,
+    ) -> Supervisor:
         base = free_base_port(max(n.port_offset for n in nodes) + 1)
         supervisor = Supervisor(
             LaunchSpec(nodes=nodes),
             LaunchOptions(base_port=base, **options),  # type: ignore[arg-type]
-            command_for=command_for(self.program),
+            command_for=command or command_for(self.program),
             out=self.out,
             stop_timeout_s=stop_timeout_s,
         )
@@ -185,7 +192,9 @@ async def test_all_nodes_come_up_in_order(launch: Launch) -> None:
             assert (await client.get(f"{status.url}/health")).status_code == 200
     text = launch.out.getvalue()
     base = supervisor.options.base_port
-    assert re.search(rf"^\[launch\] a ready at http://127\.0\.0\.1:{base} \(pid \d+, \d+\.\d s\)$", text, re.M)
+    assert re.search(
+        rf"^\[launch\] a ready at http://127\.0\.0\.1:{base} \(pid \d+, \d+\.\d s\)$", text, re.M
+    )
     assert re.search(rf"^\[b\] hello on {base + 1} ", text, re.M)
     assert "[launch] all 3 nodes up; Ctrl-C stops them" in text
 
@@ -200,7 +209,12 @@ async def test_the_core_starts_first_and_every_node_is_told_where_it_is(launch: 
 
 
 async def test_placeholders_and_env_reach_the_node(launch: Launch) -> None:
-    supervisor = launch(node("a", 0, env={"EXTRA": "{base_port}/{seed}/{boxes}/{speed}"}), seed=7, boxes=3, speed="max")
+    supervisor = launch(
+        node("a", 0, env={"EXTRA": "{base_port}/{seed}/{boxes}/{speed}"}),
+        seed=7,
+        boxes=3,
+        speed="max",
+    )
     await supervisor.start()
     assert f"extra={supervisor.options.base_port}/7/3/max" in launch.out.getvalue()
 
@@ -209,7 +223,10 @@ async def test_a_drawn_seed_is_announced(launch: Launch) -> None:
     supervisor = launch(node("a", 0, env={"EXTRA": "{seed}"}))
     await supervisor.start()
     seed = supervisor.options.seed
-    assert f"[launch] world seed {seed} (--seed {seed} gives the same world again)" in launch.out.getvalue()
+    assert (
+        f"[launch] world seed {seed} (--seed {seed} gives the same world again)"
+        in launch.out.getvalue()
+    )
     assert f"extra={seed}" in launch.out.getvalue()
 
 
@@ -232,7 +249,9 @@ def test_exclude_of_an_unknown_node(program: Path) -> None:
 
 async def test_a_node_that_exits_at_once_is_a_launch_error(launch: Launch, tmp_path: Path) -> None:
     grandchild = tmp_path / "a.pid"
-    supervisor = launch(node("a", 0, "--grandchild", str(grandchild)), node("b", 1, "--exit", "3"), node("c", 2))
+    supervisor = launch(
+        node("a", 0, "--grandchild", str(grandchild)), node("b", 1, "--exit", "3"), node("c", 2)
+    )
     with pytest.raises(LaunchError) as caught:
         await supervisor.start()
     assert str(caught.value) == "b exited with exit code 3 before it was ready: boom: cannot go on"
@@ -248,16 +267,20 @@ async def test_a_node_that_exits_at_once_is_a_launch_error(launch: Launch, tmp_p
 
 async def test_a_node_that_never_answers_times_out(launch: Launch) -> None:
     supervisor = launch(node("a", 0, "--no-health", ready_timeout_s=0.5))
-    with pytest.raises(LaunchError, match=r"^a \(pid \d+\) did not answer http://127\.0\.0\.1:\d+/health within 0\.5 s; is it serving on port \d+\?$"):
+    with pytest.raises(
+        LaunchError,
+        match=r"^a \(pid \d+\) did not answer http://127\.0\.0\.1:\d+/health within 0\.5 s; is it serving on port \d+\?$",
+    ):
         await supervisor.start()
     assert supervisor.status("a").state is NodeState.STOPPED
     assert supervisor.status("a").pid is None
 
 
 async def test_a_command_that_cannot_run(launch: Launch) -> None:
-    supervisor = launch(node("a", 0))
-    supervisor._command_for = lambda plan: ["/nonexistent/skydeck-node"]  # type: ignore[method-assign]
-    with pytest.raises(LaunchError, match=r"^cannot start a \(/nonexistent/skydeck-node\): \[Errno 2\]"):
+    supervisor = launch(node("a", 0), command=lambda plan: ["/nonexistent/skydeck-node"])
+    with pytest.raises(
+        LaunchError, match=r"^cannot start a \(/nonexistent/skydeck-node\): \[Errno 2\]"
+    ):
         await supervisor.start()
 
 
@@ -289,8 +312,14 @@ async def test_a_killed_node_is_respawned(launch: Launch, tmp_path: Path) -> Non
     assert (again.state, again.ready_count, again.restarts) == (NodeState.READY, 2, 1)
     assert again.exit_code == -signal.SIGKILL
     text = launch.out.getvalue()
-    assert re.search(r"^\[launch\] b exited with signal SIGKILL after \d+\.\d s; respawning in 0\.5 s$", text, re.M)
-    assert re.search(rf"^\[launch\] b ready at .* \(pid {again.pid}, \d+\.\d s, restart 1\)$", text, re.M)
+    assert re.search(
+        r"^\[launch\] b exited with signal SIGKILL after \d+\.\d s; respawning in 0\.5 s$",
+        text,
+        re.M,
+    )
+    assert re.search(
+        rf"^\[launch\] b ready at .* \(pid {again.pid}, \d+\.\d s, restart 1\)$", text, re.M
+    )
     # The dead node's grandchild was cleaned up; the new one has its own.
     await wait_gone([first_grandchild])
     assert supervisor.status("a").ready_count == 1
@@ -318,7 +347,10 @@ async def test_a_node_without_respawn_stays_down(launch: Launch) -> None:
     with pytest.raises(LaunchError, match=r"b exited \(code -15\) and is not respawned"):
         async with asyncio.timeout(10):
             await supervisor.wait_ready("b", count=2)
-    assert "[launch] b exited with signal SIGTERM; not respawned (respawn: false)" in launch.out.getvalue()
+    assert (
+        "[launch] b exited with signal SIGTERM; not respawned (respawn: false)"
+        in launch.out.getvalue()
+    )
     assert supervisor.status("a").state is NodeState.READY
 
 
@@ -326,7 +358,12 @@ async def test_a_node_without_respawn_stays_down(launch: Launch) -> None:
 
 
 async def test_stop_leaves_no_process_behind(launch: Launch, tmp_path: Path) -> None:
-    supervisor = launch(*(node(name, i, "--grandchild", str(tmp_path / f"{name}.pid")) for i, name in enumerate("abc")))
+    supervisor = launch(
+        *(
+            node(name, i, "--grandchild", str(tmp_path / f"{name}.pid"))
+            for i, name in enumerate("abc")
+        )
+    )
     await supervisor.start()
     pids = [supervisor.status(name).pid for name in "abc"]
     grandchildren = [int((tmp_path / f"{name}.pid").read_text()) for name in "abc"]
@@ -363,7 +400,11 @@ async def test_stop_during_start_stops_what_started(launch: Launch) -> None:
     await supervisor.stop()
     await starting  # returns quietly: a stop was asked for
     assert ready_names(launch.out) == ["a"]
-    assert [supervisor.status(name).state for name in "abc"] == [NodeState.STOPPED, NodeState.STOPPED, NodeState.WAITING]
+    assert [supervisor.status(name).state for name in "abc"] == [
+        NodeState.STOPPED,
+        NodeState.STOPPED,
+        NodeState.WAITING,
+    ]
 
 
 async def test_start_twice_is_an_error(launch: Launch) -> None:
@@ -393,7 +434,9 @@ RUNNER = textwrap.dedent(
 
 
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
-def test_a_signal_stops_everything_and_exits_0(program: Path, tmp_path: Path, sig: signal.Signals) -> None:
+def test_a_signal_stops_everything_and_exits_0(
+    program: Path, tmp_path: Path, sig: signal.Signals
+) -> None:
     runner = tmp_path / "runner.py"
     runner.write_text(RUNNER)
     env = {**os.environ, "PYTHONPATH": str(REPO), "PYTHONUNBUFFERED": "1"}
