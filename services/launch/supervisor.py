@@ -232,19 +232,22 @@ class Supervisor:
         if self._stopped:
             return
         self._stopped = True
-        running = [child for child in self._children.values() if child.process is not None]
+        started = [child for child in self._children.values() if child.process is not None]
+        running = sum(child.running for child in started)
         if running:
-            self._say(f"stopping {len(running)} nodes")
-        for child in reversed(list(self._children.values())):
+            self._say(f"stopping {running} node{'s' if running != 1 else ''}")
+        for child in reversed(started):
             await self._terminate(child, report=True)
             if child.watch is not None:
-                await child.watch  # returns promptly: it sees the stop request
+                try:
+                    await child.watch  # returns promptly: it sees the stop request
+                except Exception as error:  # a bug there must not leave processes behind
+                    self._say(f"supervising {child.plan.name} failed: {error!r}")
             await self._terminate(child)  # a respawn racing the stop request
-            if child.process is not None:
-                child.state = NodeState.STOPPED
+            child.state = NodeState.STOPPED
         if self._http is not None:
             await self._http.aclose()
-        if running:
+        if started:
             self._say("all nodes stopped")
         self._notify()
 

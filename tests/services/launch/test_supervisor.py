@@ -20,12 +20,14 @@ import pytest
 from services.launch import (
     CommandFor,
     LaunchError,
+    LaunchFileError,
     LaunchOptions,
     LaunchSpec,
     NodePlan,
     NodeSpec,
     NodeState,
     Supervisor,
+    run_launch,
 )
 
 pytestmark = pytest.mark.timeout(30)
@@ -468,3 +470,8 @@ def test_a_signal_stops_everything_and_exits_0(
     assert f"[launch] {sig.name}: stopping" in rest
     assert "[launch] all nodes stopped" in rest
     asyncio.run(wait_gone(pids))
+
+
+def test_run_launch_reports_a_bad_launch_file(tmp_path: Path) -> None:
+    with pytest.raises(LaunchFileError, match=r"x\.yaml: no such launch file$"):
+        run_launch(tmp_path / "x.yaml")
