@@ -4,11 +4,15 @@ The simulator node (``sim_server.node``) exposes a :class:`World` over topics an
 :class:`InvalidCommand` (a ``ValueError``) is the one exception raised for bad pilot input;
 everything else is a programming error (``ValueError`` for a bad config, ``RuntimeError`` for
 a closed world).
+
+The exports load lazily, so other nodes can import ``sim_server.limits`` (the arena and speed
+limits) without loading PyBullet.
 """
 
-from sim_server.camera import render_jpeg
-from sim_server.commands import ControlMode, InvalidCommand
-from sim_server.world import DroneState, World, WorldConfig
+from __future__ import annotations
+
+import importlib
+from typing import Any
 
 __all__ = [
     "ControlMode",
@@ -18,3 +22,19 @@ __all__ = [
     "WorldConfig",
     "render_jpeg",
 ]
+
+_HOMES = {
+    "ControlMode": "sim_server.commands",
+    "InvalidCommand": "sim_server.commands",
+    "DroneState": "sim_server.world",
+    "World": "sim_server.world",
+    "WorldConfig": "sim_server.world",
+    "render_jpeg": "sim_server.camera",
+}
+
+
+def __getattr__(name: str) -> Any:
+    home = _HOMES.get(name)
+    if home is None:
+        raise AttributeError(f"module 'sim_server' has no attribute {name!r}")
+    return getattr(importlib.import_module(home), name)

@@ -1,8 +1,12 @@
-"""Running the core under uvicorn (``skydeck core``)."""
+"""Running the core under uvicorn (``skydeck core``); Ctrl-C and SIGTERM stop it with exit 0."""
 
 from __future__ import annotations
 
+import asyncio
+import contextlib
 import logging
+import signal
+from collections.abc import Iterator
 
 import uvicorn
 
@@ -12,14 +16,35 @@ from services.core.settings import CoreSettings
 __all__ = ["serve"]
 
 
+class _Server(uvicorn.Server):
+    """uvicorn without re-raising the stop signal after shutdown (a supervisor reads that as a crash)."""
+
+    @contextlib.contextmanager
+    def capture_signals(self) -> Iterator[None]:
+        loop = asyncio.get_running_loop()
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            loop.add_signal_handler(sig, self._stop)
+        try:
+            yield
+        finally:
+            for sig in (signal.SIGINT, signal.SIGTERM):
+                loop.remove_signal_handler(sig)
+
+    def _stop(self) -> None:
+        if self.should_exit:
+            self.force_exit = True  # a second Ctrl-C does not wait for open connections
+        self.should_exit = True
+
+
 def serve(settings: CoreSettings | None = None) -> None:
     """Serve the core until Ctrl-C or SIGTERM."""
     settings = settings or CoreSettings()
     logging.basicConfig(level=settings.log_level.upper(), format="[%(levelname)s] [%(name)s] %(message)s")
+    logging.getLogger("httpx").setLevel(logging.WARNING)
     logging.getLogger("skydeck.core").info(
         "core at http://%s:%d (dashboard /, every command /docs)", settings.host, settings.port
     )
-    uvicorn.run(
+    config = uvicorn.Config(
         create_app(settings),
         host=settings.host,
         port=settings.port,
@@ -30,3 +55,4 @@ def serve(settings: CoreSettings | None = None) -> None:
         ws_ping_timeout=settings.ping_timeout_s,
         ws_per_message_deflate=False,
     )
+    asyncio.run(_Server(config).serve())
