@@ -1,0 +1,71 @@
+# One image for every Skydeck process: `skydeck core` and `skydeck run sim|perception|control|ai`.
+# docker-compose.yml runs one container of it per process; see README "Run with Docker".
+#
+# Stages:
+#   web-vendor  npm ci of web_ui/vendor (Swagger UI for the core's /docs); only its files leave
+#   build       a venv at /opt/skydeck: runtime dependencies from requirements-runtime.lock
+#               (hash-checked), then the project itself as a wheel (no editable install)
+#               and the Swagger UI files inside the installed web_ui package
+#   final       python slim + that venv, a non-root user; no node, npm, pip, setuptools or compilers
+#
+# Layer order: lock files first, sources last, so a code change rebuilds only the last layers.
+
+ARG PYTHON_IMAGE=python:3.11-slim-bookworm
+ARG NODE_IMAGE=node:20-bookworm-slim
+
+# -- web-vendor: browser assets from the npm lock ----------------------------------------------
+FROM ${NODE_IMAGE} AS web-vendor
+WORKDIR /vendor
+COPY web_ui/vendor/package.json web_ui/vendor/package-lock.json ./
+RUN npm ci --omit=dev --ignore-scripts --no-audit --no-fund
+
+# -- build: the venv ----------------------------------------------------------------------------
+FROM ${PYTHON_IMAGE} AS build
+ENV PIP_DISABLE_PIP_VERSION_CHECK=1 \
+    PIP_NO_CACHE_DIR=1 \
+    PYTHONDONTWRITEBYTECODE=1
+# pybullet publishes x86_64 wheels only: elsewhere (arm64) it is compiled here, in this stage.
+RUN if [ "$(dpkg --print-architecture)" != "amd64" ]; then \
+        apt-get update \
+        && apt-get install -y --no-install-recommends g++ \
+        && rm -rf /var/lib/apt/lists/*; \
+    fi
+RUN python -m venv /opt/skydeck
+# requirements-runtime.lock: requirements.lock's pins and hashes for pyproject.toml's runtime
+# dependencies plus numpy, which pybullet's wheel imports (tests/test_containers.py checks both).
+COPY requirements-runtime.lock /tmp/requirements-runtime.lock
+RUN /opt/skydeck/bin/pip install --require-hashes --no-deps -r /tmp/requirements-runtime.lock
+WORKDIR /src
+COPY pyproject.toml README.md ./
+COPY shared_models ./shared_models
+COPY sim_server ./sim_server
+COPY web_ui ./web_ui
+COPY services ./services
+# Dependencies are already in place (--no-deps); pip builds the wheel in a throwaway build env.
+RUN /opt/skydeck/bin/pip install --no-deps .
+# The core serves Swagger UI from web_ui/vendor/node_modules/swagger-ui-dist next to the
+# installed web_ui package (services/core/app.py); the package's folder is asked, not assumed.
+COPY --from=web-vendor /vendor/node_modules/swagger-ui-dist /tmp/swagger-ui-dist
+RUN web_ui="$(/opt/skydeck/bin/python -I -c 'import pathlib, web_ui; print(pathlib.Path(web_ui.__file__).parent)')" \
+    && mkdir -p "$web_ui/vendor/node_modules" \
+    && mv /tmp/swagger-ui-dist "$web_ui/vendor/node_modules/swagger-ui-dist" \
+    && /opt/skydeck/bin/python -m pip uninstall --yes setuptools pip
+# Fail the build, not the first `docker compose up`, if a process cannot even import.
+RUN cd / && /opt/skydeck/bin/python -I -c "import services.core.app, sim_server.node, services.perception.node, services.control.node, services.ai.node" \
+    && /opt/skydeck/bin/skydeck run --help >/dev/null
+
+# -- final: the runtime image -------------------------------------------------------------------
+FROM ${PYTHON_IMAGE}
+ENV PATH=/opt/skydeck/bin:$PATH \
+    PYTHONUNBUFFERED=1 \
+    PYTHONDONTWRITEBYTECODE=1 \
+    SKYDECK_HOST=0.0.0.0 \
+    SKYDECK_STATE_DIR=/var/lib/skydeck
+RUN useradd --system --uid 10001 --user-group --create-home --home-dir /home/skydeck skydeck \
+    && mkdir -p /var/lib/skydeck \
+    && chown skydeck:skydeck /var/lib/skydeck
+COPY --from=build /opt/skydeck /opt/skydeck
+USER skydeck
+WORKDIR /home/skydeck
+EXPOSE 8000 8001 8002 8003 8004
+CMD ["skydeck", "core", "--host", "0.0.0.0"]
