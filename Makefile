@@ -26,6 +26,7 @@ test-deps:
 		{ apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium docker-compose >/dev/null; }
 
 test: install test-deps
+	docker-compose -f docker-compose.yml config --quiet
 	$(BIN)/python -m pytest -q
 
 lint: install

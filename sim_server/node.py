@@ -18,15 +18,15 @@ import time
 
 from pydantic import Field, ValidationError, field_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
-from shared_models.geometry_msgs import Point, Pose, PoseArray, PoseStamped, Quaternion, Twist
-from shared_models.mavros_msgs import PositionTarget, State
-from shared_models.sensor_msgs import CompressedImage
-from shared_models.std_srvs import Trigger, TriggerResponse
 
 from services.runtime import Node, NodeSettings, spin
 from services.runtime.settings import settings_with_default_port
 from shared_models.builtin_interfaces import Time
+from shared_models.geometry_msgs import Point, Pose, PoseArray, PoseStamped, Quaternion, Twist
+from shared_models.mavros_msgs import PositionTarget, State
+from shared_models.sensor_msgs import CompressedImage
 from shared_models.std_msgs import Header
+from shared_models.std_srvs import Trigger, TriggerRequest, TriggerResponse
 from sim_server.camera import render_jpeg
 from sim_server.commands import InvalidCommand
 from sim_server.limits import DEFAULT_BOXES, MAX_BOXES, PHYSICS_HZ
@@ -112,7 +112,7 @@ class SimulatorNode(Node):
         except InvalidCommand as error:
             self._warn("cmd_vel", f"refused cmd_vel: {error}")
 
-    def on_reset(self, request: Trigger.Request) -> TriggerResponse:
+    def on_reset(self, request: TriggerRequest) -> TriggerResponse:
         self.world.reset()
         self.resets += 1
         self._publish_boxes(self._header())

@@ -32,11 +32,9 @@ DOCKERFILE = ROOT / "Dockerfile"
 PORTS = {"core": 8000, "sim": 8001, "perception": 8002, "control": 8003, "ai": 8004}
 SIM_TIME_NODES = {"control", "ai"}  # they follow /clock, as in services/launch/workshop.yaml
 CORE_URL = "http://core:8000"
-# requirements-runtime.lock is made from pyproject.toml, pinned to requirements.lock. pybullet's
-# wheel imports numpy (`import pybullet` fails without it) but pyproject.toml does not list it,
-# so it is added on stdin; once pyproject.toml lists numpy, drop the `echo numpy |` part.
+# requirements-runtime.lock is made from pyproject.toml, pinned to requirements.lock.
 REGENERATE_RUNTIME_LOCK = (
-    "echo numpy | .venv/bin/uv pip compile pyproject.toml - -c requirements.lock"
+    ".venv/bin/uv pip compile pyproject.toml -c requirements.lock"
     " --python-version 3.11 --generate-hashes -o requirements-runtime.lock"
 )
 
@@ -269,8 +267,6 @@ def test_the_runtime_lock_is_a_subset_of_the_lock() -> None:
     for requirement in project["dependencies"]:
         name = re.sub(r"[-_.]+", "-", re.match(r"[A-Za-z0-9._-]+", requirement).group(0)).lower()  # type: ignore[union-attr]
         assert name in runtime, f"{name} (pyproject.toml) is missing from requirements-runtime.lock"
-    assert "numpy" in runtime, (
-        f"pybullet needs numpy at import; regenerate: {REGENERATE_RUNTIME_LOCK}"
-    )
+    assert "numpy" in runtime, "pybullet imports numpy: it must be a runtime dependency"
     for dev_tool in ("pytest", "playwright", "mypy", "setuptools"):
         assert dev_tool not in runtime, f"{dev_tool} is a dev tool, not a runtime dependency"

@@ -20,7 +20,7 @@ from services.runtime.settings import settings_with_default_port
 from shared_models.geometry_msgs import Point, Polygon, PoseStamped
 from shared_models.ros_workshop import AiStatus, FlyCommand
 from shared_models.std_msgs import Header
-from shared_models.std_srvs import Trigger, TriggerResponse
+from shared_models.std_srvs import Trigger, TriggerRequest, TriggerResponse
 from sim_server.limits import START_XY_M
 
 __all__ = ["AiNode", "main"]
@@ -68,11 +68,11 @@ class AiNode(Node):
         self.boxes = [(p.x, p.y) for p in msg.points]
         self._boxes_event.set()
 
-    async def handle_start(self, request: Trigger.Request) -> TriggerResponse:
+    async def handle_start(self, request: TriggerRequest) -> TriggerResponse:
         self._start_mission()
         return TriggerResponse(success=True, message="Mission (re)started.")
 
-    async def handle_stop(self, request: Trigger.Request) -> TriggerResponse:
+    async def handle_stop(self, request: TriggerRequest) -> TriggerResponse:
         if self._mission is None or self._mission.done():
             return TriggerResponse(success=False, message="No mission is running.")
         self._mission.cancel()

@@ -16,9 +16,15 @@ from services.runtime import Node, NodeSettings, spin
 from services.runtime.settings import settings_with_default_port
 from shared_models.geometry_msgs import Point, PoseStamped
 from shared_models.mavros_msgs import PositionTarget
-from shared_models.ros_workshop import ControlState, FlyCommand, FlyCommandResponse
+from shared_models.ros_workshop import (
+    ControlPhase,
+    ControlState,
+    FlyCommand,
+    FlyCommandRequest,
+    FlyCommandResponse,
+)
 from shared_models.std_msgs import Header
-from shared_models.std_srvs import Trigger, TriggerResponse
+from shared_models.std_srvs import Trigger, TriggerRequest, TriggerResponse
 from sim_server.limits import FLY_HALF_SIZE_M, ON_GROUND_Z_M
 
 __all__ = ["ControlNode", "main"]
@@ -42,7 +48,7 @@ class ControlNode(Node):
         self.drone_position: Point | None = None
         self._pose_wall_s = -math.inf
         self.setpoint = Point()
-        self.state = "landed"
+        self.state: ControlPhase = "landed"
         self.setpoint_publisher = self.create_publisher(PositionTarget, "/drone/setpoint", 10)
         self.state_publisher = self.create_publisher(ControlState, "/control/state", 10, latched=True)
         self.create_subscription(PoseStamped, "/drone/pose", self.on_pose, 1)
@@ -73,7 +79,7 @@ class ControlNode(Node):
 
     # -- services -----------------------------------------------------------------------------
 
-    def handle_take_off(self, request: Trigger.Request) -> TriggerResponse:
+    def handle_take_off(self, request: TriggerRequest) -> TriggerResponse:
         self.get_logger().info("Handling take off!")
         if self.drone_position is None or not self.pose_is_fresh():
             return TriggerResponse(success=False, message="No drone pose: is the simulator (`skydeck run sim`) running?")
@@ -83,7 +89,7 @@ class ControlNode(Node):
         self._set_state("taking_off")
         return TriggerResponse(success=True, message="All ok!")
 
-    def handle_fly(self, request: FlyCommand.Request) -> FlyCommandResponse:
+    def handle_fly(self, request: FlyCommandRequest) -> FlyCommandResponse:
         x, y = float(request.x), float(request.y)
         if self.state in ("landed", "landing"):
             return FlyCommandResponse(success=False, message="Take off first: the drone is not in the air.")
@@ -100,7 +106,7 @@ class ControlNode(Node):
         self.get_logger().info("Flying to (%g, %g)", x, y)
         return FlyCommandResponse(success=True, message=f"Flying to ({x:g}, {y:g}).")
 
-    def handle_land(self, request: Trigger.Request) -> TriggerResponse:
+    def handle_land(self, request: TriggerRequest) -> TriggerResponse:
         if self.state in ("landed", "landing"):
             return TriggerResponse(success=False, message=f"Already {self.state}.")
         position = self.drone_position or self.setpoint
@@ -114,10 +120,11 @@ class ControlNode(Node):
         """The offboard stream: re-sent at 30 Hz while the drone is under control."""
         if self.state == "landed":
             return
-        if not self.pose_is_fresh():
-            if not self._stale_reported and self.drone_position is not None:
-                self._stale_reported = True
-                self.get_logger().warning("no drone pose for %.1f s: holding the setpoint, is the simulator running?", STALE_POSE_S)
+        if not self.pose_is_fresh() and not self._stale_reported and self.drone_position is not None:
+            self._stale_reported = True
+            self.get_logger().warning(
+                "no drone pose for %.1f s: holding the setpoint, is the simulator running?", STALE_POSE_S
+            )
         self.setpoint_publisher.publish(
             PositionTarget(
                 header=Header(stamp=self.get_clock().now().to_msg(), frame_id="map"),
@@ -129,7 +136,7 @@ class ControlNode(Node):
             )
         )
 
-    def _set_state(self, state: str) -> None:
+    def _set_state(self, state: ControlPhase) -> None:
         if state != self.state:
             self.state = state
             self.publish_state()

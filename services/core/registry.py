@@ -81,7 +81,7 @@ class Registry:
             record.counters[topic] = (count, now, rate)
 
     def _changed(self, before: NodeDescription | None, after: NodeDescription | None) -> None:
-        topics = set()
+        topics: set[str] = set()
         for description in (before, after):
             if description is not None:
                 topics.update(e.name for e in description.publications)
@@ -134,8 +134,8 @@ class Registry:
     def graph(self) -> dict[str, Any]:
         """Nodes, topics (type, publishers, subscribers, rate) and services, as ``/api/graph``."""
         topics: dict[str, dict[str, Any]] = {}
-        services = []
-        nodes = []
+        services: list[dict[str, str]] = []
+        nodes: list[dict[str, Any]] = []
         for name, record in sorted(self.nodes.items()):
             description = record.description
             nodes.append({

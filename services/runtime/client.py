@@ -45,7 +45,7 @@ class Client(Generic[R]):
         self._default_timeout_s = default_timeout_s
         self._node_url: str | None = None
 
-    async def call(self, request: Message | None = None, *, timeout_s: float | None = None) -> Message:
+    async def call(self, request: Message | None = None, *, timeout_s: float | None = None) -> R:
         """Call the service and return its response (also when ``success`` is false).
 
         Raises ServiceUnavailableError when no node hosts it or the node is unreachable,
@@ -85,10 +85,10 @@ class Client(Generic[R]):
                 raise ServiceCallRejectedError(
                     self.srv_name, f"{self.srv_name} refused the call ({reply.status_code}): {reply.text}", reply.status_code
                 )
-            return self.srv_type.Response.model_validate_json(reply.content)
+            return self.srv_type.Response.model_validate_json(reply.content)  # type: ignore[return-value]
         raise ServiceUnavailableError(self.srv_name, f"no node hosts {self.srv_name}")
 
-    def call_async(self, request: Message | None = None, *, timeout_s: float | None = None) -> asyncio.Task[Message]:
+    def call_async(self, request: Message | None = None, *, timeout_s: float | None = None) -> asyncio.Future[R]:
         """Start a call and return the task (rclpy's ``call_async``)."""
         return asyncio.ensure_future(self.call(request, timeout_s=timeout_s))
 

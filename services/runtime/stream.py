@@ -16,6 +16,7 @@ import asyncio
 import contextlib
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TypeVar
 
 from pydantic import BaseModel, ValidationError
 from starlette.websockets import WebSocket, WebSocketDisconnect, WebSocketState
@@ -41,6 +42,8 @@ CLOSE_TOO_BIG = 1009
 DEFAULT_QUEUE = 100
 MAX_QUEUE = 10_000
 MAX_RATE_HZ = 1_000.0
+M = TypeVar("M", bound=BaseModel)
+
 _MAX_REASON_BYTES = 123  # RFC 6455: a close frame's reason fits in 123 bytes
 
 
@@ -90,7 +93,7 @@ def describe_validation_error(type_name: str, error: ValidationError) -> str:
     return f"invalid {type_name}: {location}: {first['msg']}{more}"
 
 
-def parse_frame(msg_type: type[BaseModel], type_name: str, text: str) -> BaseModel:
+def parse_frame(msg_type: type[M], type_name: str, text: str) -> M:
     """Validate one text frame against the topic's type, or raise FrameRejected(1007)."""
     try:
         return msg_type.model_validate_json(text)

@@ -10,8 +10,6 @@ from pathlib import Path
 
 import httpx
 
-from tests.conftest import wait_until
-
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
