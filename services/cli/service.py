@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import argparse
 
+from services.cli.arguments import ros_name
 from services.cli.core_client import get_json, post_json
 from services.cli.errors import CliError
 from services.cli.formatting import parse_data, to_yaml
-from shared_models import InvalidNameError, resolve_name
 
 __all__ = ["add_parser"]
 
@@ -35,13 +35,6 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.set_defaults(func=_call)
 
 
-def _name(text: str) -> str:
-    try:
-        return resolve_name(text)
-    except InvalidNameError as error:
-        raise CliError(str(error)) from None
-
-
 def _lookup(name: str) -> dict[str, str]:
     return get_json(f"/api/services{name}", missing=f"unknown service {name}: see `skydeck service list`")  # type: ignore[no-any-return]
 
@@ -53,18 +46,18 @@ def _list(args: argparse.Namespace) -> int:
 
 
 def _info(args: argparse.Namespace) -> int:
-    service = _lookup(_name(args.service))
+    service = _lookup(ros_name(args.service))
     print(f"Node: {service['node']}\nURI: {service['url']}{service['name']}\nType: {service['type']}")
     return 0
 
 
 def _type(args: argparse.Namespace) -> int:
-    print(_lookup(_name(args.service))["type"])
+    print(_lookup(ros_name(args.service))["type"])
     return 0
 
 
 def _call(args: argparse.Namespace) -> int:
-    name = _name(args.service)
+    name = ros_name(args.service)
     reply = post_json(name, parse_data(args.data), timeout_s=args.timeout)
     if reply.status_code != 200:
         try:

@@ -13,16 +13,15 @@ from pydantic import ValidationError
 from websockets.asyncio.client import connect
 from websockets.exceptions import ConnectionClosed, InvalidHandshake, InvalidStatus
 
+from services.cli.arguments import positive_float, positive_int, ros_name
 from services.cli.core_client import auth_headers, core_url, get_json, ws_url
 from services.cli.errors import CliError
 from services.cli.formatting import parse_data, to_yaml
 from services.runtime.stream import describe_validation_error
 from shared_models import (
-    InvalidNameError,
     Message,
     UnknownInterfaceError,
     get_interface,
-    resolve_name,
 )
 
 __all__ = ["add_parser"]
@@ -44,16 +43,16 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p = verbs.add_parser("echo", help="print the messages of a topic")
     p.add_argument("topic")
     p.add_argument("--once", action="store_true", help="print one message and exit")
-    p.add_argument("-n", "--count", type=_positive_int, help="exit after N messages")
-    p.add_argument("--rate", type=_positive_float, help="at most HZ messages a second (newest wins)")
+    p.add_argument("-n", "--count", type=positive_int, help="exit after N messages")
+    p.add_argument("--rate", type=positive_float, help="at most HZ messages a second (newest wins)")
     p.add_argument("--json", action="store_true", help="one JSON object per line instead of YAML")
-    p.add_argument("--timeout", type=_positive_float, help="give up after S seconds without a message")
+    p.add_argument("--timeout", type=positive_float, help="give up after S seconds without a message")
     p.set_defaults(func=_echo)
 
     p = verbs.add_parser("hz", help="print the publishing rate of a topic")
     p.add_argument("topic")
-    p.add_argument("-w", "--window", type=_positive_int, default=100, help="messages in the rate window")
-    p.add_argument("-n", "--count", type=_positive_int, help="exit after N reports")
+    p.add_argument("-w", "--window", type=positive_int, default=100, help="messages in the rate window")
+    p.add_argument("-n", "--count", type=positive_int, help="exit after N reports")
     p.set_defaults(func=_hz)
 
     p = verbs.add_parser("pub", help="publish a message (DATA as YAML or JSON)")
@@ -62,36 +61,9 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.add_argument("data", nargs="?", default="{}", help='e.g. "{linear: {x: 1.0}}"')
     group = p.add_mutually_exclusive_group()
     group.add_argument("-1", "--once", action="store_true", help="publish one message and exit")
-    group.add_argument("-r", "--rate", type=_positive_float, default=1.0, help="publish at HZ until Ctrl-C (default 1)")
-    p.add_argument("-t", "--times", type=_positive_int, help="publish N messages and exit")
+    group.add_argument("-r", "--rate", type=positive_float, default=1.0, help="publish at HZ until Ctrl-C (default 1)")
+    p.add_argument("-t", "--times", type=positive_int, help="publish N messages and exit")
     p.set_defaults(func=_pub)
-
-
-def _positive_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
-    return value
-
-
-def _positive_float(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a positive number, got {text!r}") from None
-    if not (value > 0 and math.isfinite(value)):
-        raise argparse.ArgumentTypeError(f"expected a positive number, got {text!r}")
-    return value
-
-
-def _name(text: str) -> str:
-    try:
-        return resolve_name(text)
-    except InvalidNameError as error:
-        raise CliError(str(error)) from None
 
 
 def _list(args: argparse.Namespace) -> int:
@@ -106,7 +78,7 @@ def _list(args: argparse.Namespace) -> int:
 
 
 def _info(args: argparse.Namespace) -> int:
-    name = _name(args.topic)
+    name = ros_name(args.topic)
     topic = get_json(f"/api/topics{name}", missing=f"unknown topic {name}: see `skydeck topic list`")
     graph = get_json("/api/graph")
     urls = {node["name"]: node["url"] for node in graph["nodes"]}
@@ -145,7 +117,7 @@ def _warn_if_unpublished(name: str) -> None:
 
 
 def _echo(args: argparse.Namespace) -> int:
-    name = _name(args.topic)
+    name = ros_name(args.topic)
     _warn_if_unpublished(name)
     limit = 1 if args.once else args.count
 
@@ -169,7 +141,7 @@ def _echo(args: argparse.Namespace) -> int:
 
 
 def _hz(args: argparse.Namespace) -> int:
-    name = _name(args.topic)
+    name = ros_name(args.topic)
     _warn_if_unpublished(name)
 
     async def run() -> None:
@@ -209,7 +181,7 @@ def _print_rate(arrivals: deque[float]) -> None:
 
 
 def _pub(args: argparse.Namespace) -> int:
-    name = _name(args.topic)
+    name = ros_name(args.topic)
     try:
         msg_type = get_interface(args.type)
     except UnknownInterfaceError as error:

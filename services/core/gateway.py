@@ -16,7 +16,7 @@ from starlette.websockets import WebSocket
 from services.core.registry import Registry
 from services.core.relay import GATEWAY_NODE, Relays
 from services.core.settings import CoreSettings
-from services.runtime.auth import token_matches
+from services.runtime.auth import NOT_AUTHORISED, token_matches
 from services.runtime.outbox import Outbox
 from services.runtime.stream import (
     CLOSE_BAD_OPTION,
@@ -37,7 +37,6 @@ from shared_models import (
 __all__ = ["Gateway"]
 
 _FORWARDED_HEADERS = ("content-type", "authorization")
-NOT_AUTHORISED = "publishing and service calls need the token: Authorization: Bearer TOKEN or ?token=TOKEN"
 
 
 def _error(status_code: int, detail: str) -> JSONResponse:

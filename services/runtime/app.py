@@ -17,7 +17,7 @@ from fastapi.responses import JSONResponse, Response
 from starlette.requests import Request as HTTPRequest
 from starlette.websockets import WebSocket
 
-from services.runtime.auth import token_matches
+from services.runtime.auth import NOT_AUTHORISED, token_matches
 from services.runtime.endpoint import TopicEndpoint
 from services.runtime.limits import BodySizeLimit
 from services.runtime.outbox import Outbox
@@ -38,7 +38,6 @@ if TYPE_CHECKING:
 
 __all__ = ["NodeApp"]
 
-NOT_AUTHORISED = "publishing and service calls need the token: Authorization: Bearer TOKEN or ?token=TOKEN"
 
 
 class NodeApp:

@@ -11,9 +11,10 @@ import hmac
 
 from starlette.requests import HTTPConnection
 
-__all__ = ["TOKEN_QUERY_PARAMETER", "presented_token", "token_matches"]
+__all__ = ["NOT_AUTHORISED", "TOKEN_QUERY_PARAMETER", "presented_token", "token_matches"]
 
 TOKEN_QUERY_PARAMETER = "token"
+NOT_AUTHORISED = "publishing and service calls need the token: Authorization: Bearer TOKEN or ?token=TOKEN"
 
 
 def presented_token(connection: HTTPConnection) -> str:

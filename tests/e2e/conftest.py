@@ -7,7 +7,6 @@ import contextlib
 import json
 import os
 import signal
-import socket
 import sys
 from collections.abc import AsyncIterator, Awaitable, Callable
 from dataclasses import dataclass, field
@@ -18,29 +17,7 @@ import pytest
 from websockets.asyncio.client import connect
 
 from services.runtime.links import stream_url
-
-
-def free_port_block(size: int = 5) -> int:
-    """A base port with ``size`` consecutive free ports above it."""
-    for _ in range(200):
-        with socket.socket() as probe:
-            probe.bind(("127.0.0.1", 0))
-            base = probe.getsockname()[1]
-        if base + size >= 65000:
-            continue
-        try:
-            sockets = []
-            for offset in range(size):
-                s = socket.socket()
-                sockets.append(s)
-                s.bind(("127.0.0.1", base + offset))
-            return base
-        except OSError:
-            continue
-        finally:
-            for s in sockets:
-                s.close()
-    raise RuntimeError("no block of free ports")
+from tests.conftest import free_port_block
 
 
 @dataclass
@@ -88,7 +65,7 @@ async def launch(tmp_path: Path) -> AsyncIterator[Callable[..., Awaitable[Launch
     systems: list[LaunchedSystem] = []
 
     async def start(*args: str, env: dict[str, str] | None = None) -> LaunchedSystem:
-        base = free_port_block()
+        base = free_port_block(5)
         process = await asyncio.create_subprocess_exec(
             sys.executable, "-m", "services.cli", "launch", "--base-port", str(base), *args,
             env={**os.environ, "SKYDECK_STATE_DIR": str(tmp_path / "state"), "PYTHONUNBUFFERED": "1", **(env or {})},

@@ -15,7 +15,8 @@ from pathlib import Path
 import pytest
 from websockets.sync.client import connect
 
-from tests.web_ui.system import System, free_port_block
+from tests.conftest import free_port_block
+from tests.web_ui.system import System
 
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_ARGS = [

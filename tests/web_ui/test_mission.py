@@ -11,7 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from tests.web_ui.system import REPO, System, free_port_block
+from tests.conftest import free_port_block
+from tests.web_ui.system import REPO, System
 
 pytestmark = [pytest.mark.browser, pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(180)]
 

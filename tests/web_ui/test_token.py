@@ -10,7 +10,8 @@ from collections.abc import Iterator
 
 import pytest
 
-from tests.web_ui.system import System, free_port_block
+from tests.conftest import free_port_block
+from tests.web_ui.system import System
 
 pytestmark = [pytest.mark.browser, pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(120)]
 

@@ -1,0 +1,41 @@
+"""Argument types shared by the CLI's verbs: ROS names and positive numbers, checked at parse time."""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+from services.cli.errors import CliError
+from shared_models import InvalidNameError, resolve_name
+
+__all__ = ["positive_float", "positive_int", "ros_name"]
+
+
+def positive_int(text: str) -> int:
+    """argparse type: an integer >= 1."""
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
+    return value
+
+
+def positive_float(text: str) -> float:
+    """argparse type: a finite number > 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not (value > 0 and math.isfinite(value)):
+        raise argparse.ArgumentTypeError(f"expected a positive number, got {text!r}")
+    return value
+
+
+def ros_name(text: str) -> str:
+    """A topic or service name as the user typed it, resolved ("my_point" -> "/my_point")."""
+    try:
+        return resolve_name(text)
+    except InvalidNameError as error:
+        raise CliError(str(error)) from None

@@ -1,0 +1,56 @@
+"""``skydeck bench``: the benchmark suite, Skydeck against its references in one run."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from services.cli.errors import CliError
+
+__all__ = ["add_parser"]
+
+_DEFAULT_PLOTS = Path("docs/img")
+
+
+def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    p = subparsers.add_parser(
+        "bench",
+        help="measure topics, services, fan-out, the simulator, the AI's tours and startup against references",
+        description=(
+            "Runs each benchmark and its reference in the same run, interleaved and repeated, and prints a "
+            "table of values, references and ratios (progress on stderr). See docs/performance.md."
+        ),
+    )
+    p.add_argument("--quick", action="store_true", help="short run for CI (well under 3 minutes on 2 cores)")
+    p.add_argument("--out", type=Path, metavar="FILE.json", help="write the results as JSON")
+    p.add_argument(
+        "--plots",
+        type=Path,
+        metavar="DIR",
+        help=f"write PNG plots there (default: {_DEFAULT_PLOTS} for a full run from the repository, none with --quick)",
+    )
+    p.add_argument("--no-plots", action="store_true", help="no plots, even for a full run")
+    p.add_argument("--only", metavar="NAME[,NAME]", help="only the families of these rows (e.g. mission,service_rtt_p50)")
+    p.set_defaults(func=_bench)
+
+
+def _bench(args: argparse.Namespace) -> int:
+    from services.bench import run_bench
+
+    plots = args.plots
+    if plots is None and not args.quick and not args.no_plots and _DEFAULT_PLOTS.is_dir():
+        plots = _DEFAULT_PLOTS
+    if args.no_plots:
+        plots = None
+    only = {name.strip() for name in args.only.split(",") if name.strip()} if args.only else None
+    try:
+        outcome = run_bench(quick=args.quick, out=args.out, plots=plots, only=only)
+    except ValueError as error:
+        raise CliError(str(error)) from None
+    print(outcome.table)
+    if args.out is not None:
+        print(f"\nresults written to {args.out}", file=sys.stderr)
+    for path in outcome.plots:
+        print(f"plot written to {path}", file=sys.stderr)
+    return 1 if outcome.errors else 0
