@@ -83,6 +83,7 @@ async def launch(tmp_path: Path) -> AsyncIterator[Callable[..., Awaitable[Launch
 
         system._pump = asyncio.create_task(pump())  # type: ignore[attr-defined]
         await system.wait_for_line("[launch] all", timeout_s=60)
+        system.pids = {node["pid"] for node in (await system.graph())["nodes"]}  # type: ignore[attr-defined]
         return system
 
     yield start
@@ -97,3 +98,17 @@ async def launch(tmp_path: Path) -> AsyncIterator[Callable[..., Awaitable[Launch
                 raise AssertionError("skydeck launch did not stop on Ctrl-C") from None
         await system._pump  # type: ignore[attr-defined]
         assert not any("Traceback" in line for line in system.lines), "\n".join(system.lines[-40:])
+        assert system.process.returncode == 0, "\n".join(system.lines[-20:])
+        for pid in system.pids:  # type: ignore[attr-defined]
+            assert not _alive(pid), f"pid {pid} outlived skydeck launch"
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    # A zombie is gone for our purposes; /proc says so.
+    with contextlib.suppress(OSError):
+        return " Z " not in open(f"/proc/{pid}/stat").read()
+    return False
