@@ -1,0 +1,78 @@
+"""Simulator speed: the real-time factor of the simulator node at ``--speed max`` against a bare
+PyBullet loop of the same scene (1 drone + N boxes).
+
+The node is the real one (``skydeck run sim --speed max``), registered with a core and
+publishing at its stated rates (pose and clock 60 Hz of sim time, boxes 10 Hz, state 5 Hz).
+RTF = sim-time advance / wall time, read from the node's ``/clock`` (GET, the latest message)
+at both ends of a window after the boxes have landed: once with nobody subscribed, once with a
+subscriber node reading ``/drone/pose``. The reference is :func:`sim_server.speed.measure`'s
+bare ``stepSimulation`` loop, in its own process.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from typing import Any
+
+import httpx
+
+from services.bench.processes import BenchError, Worker, free_port, wait_http, worker_env
+from services.bench.topics import CoreHolder
+from sim_server.limits import PHYSICS_HZ
+
+__all__ = ["measure_bare", "measure_node"]
+
+_SETTLE_S = 0.5  # wall seconds: at tens of times real time the boxes have long landed
+
+
+def measure_bare(*, boxes: int, steps: int, seed: int = 1) -> dict[str, float]:
+    """RTF of the bare PyBullet loop and of the world without the node, in a worker process."""
+    with Worker("sim-bare", "services.bench.sim_worker", "--boxes", str(boxes), "--steps", str(steps), "--seed", str(seed)) as worker:
+        reading = worker.expect("RESULT", 120.0)
+    return {
+        "bare_rtf": reading["bare_steps_per_s"] / PHYSICS_HZ,
+        "world_rtf": reading["world_steps_per_s"] / PHYSICS_HZ,
+    }
+
+
+def measure_node(core: CoreHolder, *, boxes: int, window_s: float, subscriber: bool = True, seed: int = 1) -> dict[str, Any]:
+    """RTF of the simulator node at speed max, without and (optionally) with a pose subscriber."""
+    env = worker_env(core.get())
+    port = free_port()
+    argv = [
+        sys.executable, "-m", "services.cli", "run", "sim", "--port", str(port), "--log-level", "warning",
+        "--speed", "max", "--seed", str(seed), "--boxes", str(boxes),
+    ]  # fmt: skip
+    url = f"http://127.0.0.1:{port}"
+    with Worker("sim-node", argv=argv, env=env) as sim, httpx.Client(timeout=5.0) as client:
+        wait_http(f"{url}/health", 60.0, what="simulator node", worker=sim)
+        wait_http(f"{url}/clock", 30.0, what="simulator /clock", worker=sim)
+        time.sleep(_SETTLE_S)
+        result: dict[str, Any] = {"rtf_alone": _rtf(client, url, window_s)}
+        if subscriber:
+            with Worker(
+                "sim-pose-sub", "services.bench.topic_skydeck", "sub", "--topic", "/drone/pose", "--warmup", "0", env=env
+            ) as sub:
+                sub.expect("READY", 30.0)
+                time.sleep(_SETTLE_S)  # the link is up within a fraction of a second
+                result["rtf_subscribed"] = _rtf(client, url, window_s)
+                sub.send("stop")
+                received = sub.expect("RESULT", 10.0)
+            if received["received"] == 0:
+                raise BenchError("the /drone/pose subscriber received nothing from the simulator")
+            result["pose_rate"] = received["rate"]
+    return result
+
+
+def _sim_time_s(client: httpx.Client, url: str) -> tuple[float, float]:
+    wall = time.monotonic()
+    stamp = client.get(f"{url}/clock").json()
+    return stamp["sec"] + stamp["nanosec"] * 1e-9, wall
+
+
+def _rtf(client: httpx.Client, url: str, window_s: float) -> float:
+    sim0, wall0 = _sim_time_s(client, url)
+    time.sleep(window_s)
+    sim1, wall1 = _sim_time_s(client, url)
+    return (sim1 - sim0) / (wall1 - wall0)

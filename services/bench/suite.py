@@ -1,0 +1,341 @@
+"""The benchmark suite: which families run, with which parameters, and the rows they produce.
+
+``quick`` is the CI smoke run (well under 3 minutes on 2 cores); the full run repeats more,
+measures longer, and gathers the data for the plots. Targets are those of the issue; the
+ratios are what count on a shared machine.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from services.bench.report import Result
+from services.bench.runner import Family, Readings, Trial, median_of
+from services.bench.topics import CoreHolder, run_topic_pair
+
+__all__ = ["FULL", "QUICK", "Settings", "Suite"]
+
+BARE_WS = "bare websockets pair"
+ROSBRIDGE_MSGS_S = 5_000.0  # what rosbridge users report; the issue asks for 10x that
+
+
+@dataclass(frozen=True)
+class Settings:
+    """How long and how often each family measures."""
+
+    topic_repetitions: int
+    throughput_s: float
+    latency_s: float
+    latency_rate_hz: float
+    fanout_repetitions: int
+    fanout_s: float
+    service_repetitions: int
+    service_calls: int
+    sim_repetitions: int
+    sim_window_s: float
+    sim_bare_steps: int
+    mission_worlds: int
+    startup_repetitions: int
+    plot_sizes: tuple[int, ...] = (256, 1024, 4096, 16384, 65536)
+    plot_boxes: tuple[int, ...] = (0, 4, 8, 16, 30)
+    plot_throughput_s: float = 1.5
+
+
+QUICK = Settings(
+    topic_repetitions=3, throughput_s=1.0, latency_s=1.5, latency_rate_hz=1000.0,
+    fanout_repetitions=1, fanout_s=2.0,
+    service_repetitions=3, service_calls=300,
+    sim_repetitions=2, sim_window_s=1.0, sim_bare_steps=2400,
+    mission_worlds=20, startup_repetitions=1,
+)  # fmt: skip
+FULL = Settings(
+    topic_repetitions=5, throughput_s=3.0, latency_s=5.0, latency_rate_hz=1000.0,
+    fanout_repetitions=3, fanout_s=10.0,
+    service_repetitions=5, service_calls=2000,
+    sim_repetitions=3, sim_window_s=3.0, sim_bare_steps=4800,
+    mission_worlds=20, startup_repetitions=3,
+)  # fmt: skip
+
+
+def _ratio_at_most(result: Result, limit: float) -> bool | None:
+    return None if result.ratio is None else result.ratio <= limit
+
+
+class Suite:
+    """Builds the families for one run and keeps what the plots need."""
+
+    def __init__(self, settings: Settings, *, plots: bool) -> None:
+        self.settings = settings
+        self.plots = plots
+        self.core = CoreHolder()
+        self.plot_data: dict[str, Any] = {}
+
+    def close(self) -> None:
+        self.core.close()
+
+    def families(self, only: set[str] | None = None) -> list[Family]:
+        """Every family, or those named in ``only`` (by family name or by one of its rows)."""
+        families = [
+            self._throughput(),
+            self._latency(),
+            self._fanout(),
+            self._services(),
+            self._sim(),
+            self._mission(),
+            self._startup(),
+        ]
+        if self.plots:
+            families += [self._throughput_by_size(), self._rtf_by_boxes()]
+        if only:
+            families = [f for f in families if f.name in only or only.intersection(f.rows)]
+        return families
+
+    # -- topics -------------------------------------------------------------------------------
+
+    def _topic_trial(self, transport: str, mode: str, **options: Any) -> Trial:
+        s = self.settings
+
+        def run() -> dict[str, Any]:
+            pair = run_topic_pair(
+                transport,
+                mode=mode,
+                duration_s=s.throughput_s if mode == "throughput" else s.latency_s,
+                rate_hz=s.latency_rate_hz,
+                core=self.core,
+                **options,
+            )
+            sent = pair.publisher["sent"]
+            return {
+                **pair.subscriber,
+                "publisher_rate": pair.publisher["rate"],
+                "publisher_cpu": pair.publisher["cpu_s"] / pair.publisher["wall_s"],
+                "delivered": pair.subscriber["received"] / sent if sent else 0.0,
+            }
+
+        return Trial(transport, f"{transport} {mode}", run)
+
+    def _throughput(self) -> Family:
+        trials = [self._topic_trial(t, "throughput") for t in ("skydeck", "websockets", "zenoh")]
+
+        def summarise(readings: Readings) -> list[Result]:
+            rate = {key: median_of(values, "rate") for key, values in readings.items()}
+            sky = Result(
+                "topic_throughput", rate["skydeck"], "msg/s", BARE_WS, rate["websockets"],
+                target=f">= 0.8x bare and >= {10 * ROSBRIDGE_MSGS_S:,.0f} msg/s (10x rosbridge)",
+                samples=[r["rate"] for r in readings["skydeck"]],
+                detail={
+                    "publisher_rate": median_of(readings["skydeck"], "publisher_rate"),
+                    "delivered_fraction": median_of(readings["skydeck"], "delivered"),
+                    "publisher_cpu": median_of(readings["skydeck"], "publisher_cpu"),
+                    "reference_samples": [r["rate"] for r in readings["websockets"]],
+                },
+            )  # fmt: skip
+            sky.met = sky.ratio is not None and sky.ratio >= 0.8 and rate["skydeck"] >= 10 * ROSBRIDGE_MSGS_S
+            zenoh = Result(
+                "zenoh_throughput", rate["zenoh"], "msg/s", BARE_WS, rate["websockets"],
+                target="peer, for comparison", samples=[r["rate"] for r in readings["zenoh"]],
+            )  # fmt: skip
+            return [sky, zenoh]
+
+        return Family("topic_throughput", trials, self.settings.topic_repetitions, summarise,
+                      rows=("topic_throughput", "zenoh_throughput"))  # fmt: skip
+
+    def _latency(self) -> Family:
+        trials = [self._topic_trial(t, "latency") for t in ("skydeck", "websockets", "zenoh")]
+
+        def summarise(readings: Readings) -> list[Result]:
+            p50 = {key: median_of(values, "p50_us") for key, values in readings.items()}
+            p99 = {key: median_of(values, "p99_us") for key, values in readings.items()}
+            self.plot_data["latency_samples_us"] = {
+                key: [x for r in values for x in r["samples_us"]] for key, values in readings.items()
+            }
+            rate = f"{self.settings.latency_rate_hz:,.0f} msg/s"
+            rows = [
+                Result("topic_latency_p50", p50["skydeck"], "us", BARE_WS, p50["websockets"],
+                       target="<= 1.3x bare", samples=[r["p50_us"] for r in readings["skydeck"]],
+                       detail={"rate": rate, "mean_us": median_of(readings["skydeck"], "mean_us")}),
+                Result("topic_latency_p99", p99["skydeck"], "us", BARE_WS, p99["websockets"],
+                       target="< 2,000 us", met=p99["skydeck"] < 2000.0,
+                       samples=[r["p99_us"] for r in readings["skydeck"]],
+                       detail={"max_us": median_of(readings["skydeck"], "max_us")}),
+                Result("zenoh_latency_p50", p50["zenoh"], "us", BARE_WS, p50["websockets"],
+                       target="peer, for comparison", samples=[r["p50_us"] for r in readings["zenoh"]]),
+                Result("zenoh_latency_p99", p99["zenoh"], "us", BARE_WS, p99["websockets"],
+                       target="peer, for comparison", samples=[r["p99_us"] for r in readings["zenoh"]]),
+            ]  # fmt: skip
+            rows[0].met = _ratio_at_most(rows[0], 1.3)
+            return rows
+
+        return Family("topic_latency", trials, self.settings.topic_repetitions, summarise,
+                      rows=("topic_latency_p50", "topic_latency_p99", "zenoh_latency_p50", "zenoh_latency_p99"))  # fmt: skip
+
+    def _throughput_by_size(self) -> Family:
+        trials = [
+            Trial(f"{transport}:{size}", f"{transport} {size} B", self._topic_trial_sized(transport, size))
+            for size in self.settings.plot_sizes
+            for transport in ("skydeck", "websockets", "zenoh")
+        ]
+
+        def summarise(readings: Readings) -> list[Result]:
+            self.plot_data["throughput_by_size"] = {key: values[0]["rate"] for key, values in readings.items()}
+            return []
+
+        return Family("plot: throughput by message size", trials, 1, summarise)
+
+    def _topic_trial_sized(self, transport: str, size: int) -> Any:
+        def run() -> dict[str, Any]:
+            pair = run_topic_pair(transport, mode="throughput", duration_s=self.settings.plot_throughput_s,
+                                  core=self.core, size_bytes=size)  # fmt: skip
+            return pair.subscriber
+
+        return run
+
+    # -- fan-out ------------------------------------------------------------------------------
+
+    def _fanout(self) -> Family:
+        from services.bench.fanout import run_fanout
+
+        trial = Trial("fanout", "100 subscriber nodes at 30 Hz",
+                      lambda: run_fanout(self.core, duration_s=self.settings.fanout_s))  # fmt: skip
+
+        def summarise(readings: Readings) -> list[Result]:
+            values = readings["fanout"]
+            delivered = median_of(values, "delivered")
+            return [
+                Result("fanout_100", delivered, "fraction", target="1.00 (every message to every subscriber)",
+                       met=min(v["delivered"] for v in values) >= 1.0, samples=[v["delivered"] for v in values],
+                       detail={"messages_per_repetition": values[0]["published"],
+                               "latency_p50_us": median_of(values, "latency_p50_us"),
+                               "latency_p99_us": median_of(values, "latency_p99_us")}),
+                Result("fanout_100_publisher_cpu", 100 * median_of(values, "publisher_cpu"), "% of a core",
+                       target="-", samples=[100 * v["publisher_cpu"] for v in values]),
+            ]  # fmt: skip
+
+        return Family("fanout", [trial], self.settings.fanout_repetitions, summarise,
+                      rows=("fanout_100", "fanout_100_publisher_cpu"))  # fmt: skip
+
+    # -- services -----------------------------------------------------------------------------
+
+    def _services(self) -> Family:
+        from services.bench.services import ServiceTargets
+
+        targets = ServiceTargets(self.core)
+        calls = self.settings.service_calls
+        trials = [
+            Trial(key, label, lambda key=key: targets.measure(key, calls))  # type: ignore[misc]
+            for key, label in (("skydeck", "node directly"), ("gateway", "through the gateway"), ("fastapi", "bare FastAPI"))
+        ]
+
+        def summarise(readings: Readings) -> list[Result]:
+            p50 = {key: median_of(values, "p50_us") for key, values in readings.items()}
+            direct = Result("service_rtt_p50", p50["skydeck"], "us", "bare FastAPI endpoint", p50["fastapi"],
+                            target="<= 1.2x bare", samples=[r["p50_us"] for r in readings["skydeck"]],
+                            detail={"p99_us": median_of(readings["skydeck"], "p99_us"),
+                                    "reference_p99_us": median_of(readings["fastapi"], "p99_us")})  # fmt: skip
+            direct.met = _ratio_at_most(direct, 1.2)
+            gateway = Result("gateway_service_rtt_p50", p50["gateway"], "us", "direct call (service_rtt_p50)",
+                             p50["skydeck"], target="<= 2x direct",
+                             samples=[r["p50_us"] for r in readings["gateway"]],
+                             detail={"p99_us": median_of(readings["gateway"], "p99_us")})  # fmt: skip
+            gateway.met = _ratio_at_most(gateway, 2.0)
+            return [direct, gateway]
+
+        return Family("services", trials, self.settings.service_repetitions, summarise,
+                      rows=("service_rtt_p50", "gateway_service_rtt_p50"), close=targets.close)  # fmt: skip
+
+    # -- simulator ----------------------------------------------------------------------------
+
+    def _sim(self) -> Family:
+        from services.bench.sim import measure_bare, measure_node
+
+        s = self.settings
+        trials = [
+            Trial("node", "simulator node, speed max", lambda: measure_node(self.core, boxes=8, window_s=s.sim_window_s)),
+            Trial("bare", "bare PyBullet loop", lambda: measure_bare(boxes=8, steps=s.sim_bare_steps)),
+        ]
+
+        def summarise(readings: Readings) -> list[Result]:
+            bare = median_of(readings["bare"], "bare_rtf")
+            node = readings["node"]
+            rtf = Result("sim_rtf", median_of(node, "rtf_subscribed"), "x real time", "bare PyBullet loop, same scene",
+                         bare, target=">= 20x real time and >= 0.6x bare",
+                         samples=[r["rtf_subscribed"] for r in node],
+                         detail={"with": "a subscriber node on /drone/pose",
+                                 "pose_messages_per_s": median_of(node, "pose_rate")})  # fmt: skip
+            rtf.met = rtf.ratio is not None and rtf.ratio >= 0.6 and (rtf.value or 0) >= 20
+            alone = Result("sim_rtf_no_subscriber", median_of(node, "rtf_alone"), "x real time",
+                           "bare PyBullet loop, same scene", bare, target="-",
+                           samples=[r["rtf_alone"] for r in node])  # fmt: skip
+            world = Result("sim_world_rtf", median_of(readings["bare"], "world_rtf"), "x real time",
+                           "bare PyBullet loop, same scene", bare, target="- (World class, no node, flying)",
+                           samples=[r["world_rtf"] for r in readings["bare"]])  # fmt: skip
+            return [rtf, alone, world]
+
+        return Family("sim", trials, s.sim_repetitions, summarise,
+                      rows=("sim_rtf", "sim_rtf_no_subscriber", "sim_world_rtf"))  # fmt: skip
+
+    def _rtf_by_boxes(self) -> Family:
+        from services.bench.sim import measure_bare, measure_node
+
+        s = self.settings
+        trials = []
+        for boxes in s.plot_boxes:
+            trials.append(Trial(f"node:{boxes}", f"simulator node, {boxes} boxes",
+                                lambda b=boxes: measure_node(self.core, boxes=b, window_s=s.sim_window_s, subscriber=False)))  # type: ignore[misc]  # fmt: skip
+            trials.append(Trial(f"bare:{boxes}", f"bare loop, {boxes} boxes",
+                                lambda b=boxes: measure_bare(boxes=b, steps=s.sim_bare_steps)))  # type: ignore[misc]  # fmt: skip
+
+        def summarise(readings: Readings) -> list[Result]:
+            self.plot_data["rtf_by_boxes"] = {key: values[0] for key, values in readings.items()}
+            return []
+
+        return Family("plot: RTF by box count", trials, 1, summarise)
+
+    # -- mission and startup ------------------------------------------------------------------
+
+    def _mission(self) -> Family:
+        from services.bench.mission import measure_tours
+
+        worlds = self.settings.mission_worlds
+        trial = Trial("tours", f"{worlds} seeded worlds, 8 boxes", lambda: measure_tours(worlds=worlds, boxes=8))
+
+        def summarise(readings: Readings) -> list[Result]:
+            tours = readings["tours"][0]
+            return [
+                Result("mission_tour_ratio", tours["mean_ratio"], "x optimal", target="1.00 on every world",
+                       met=tours["worst_ratio"] <= 1.0 + 1e-9,
+                       detail={k: tours[k] for k in ("worst_ratio", "optimal_worlds", "worlds", "plan_ms_median")}),
+                Result("mission_nearest_first_ratio", tours["nearest_first_mean_ratio"], "x optimal",
+                       target="- (the workshop's nearest-first bonus, for scale)",
+                       detail={"worst_ratio": tours["nearest_first_worst_ratio"]}),
+            ]  # fmt: skip
+
+        return Family("mission", [trial], 1, summarise, rows=("mission_tour_ratio", "mission_nearest_first_ratio"))
+
+    def _startup(self) -> Family:
+        from services.bench.startup import measure_startup
+
+        trial = Trial("launch", "skydeck launch to every node ready", measure_startup)
+
+        def summarise(readings: Readings) -> list[Result]:
+            values = readings["launch"]
+            how = values[0]["how"]
+            detail = {"how": how, "processes": values[0]["processes"], "stop_s": median_of(values, "stop_s")}
+            if "launch_error" in values[0]:
+                detail["launch_error"] = values[0]["launch_error"]
+            startup = median_of(values, "ready_s")
+            rss = median_of(values, "rss_mb")
+            return [
+                Result("startup", startup, "s", target="< 3 s", met=startup < 3.0,
+                       samples=[v["ready_s"] for v in values], detail=detail),
+                Result("system_rss", rss, "MiB", target="< 400 MiB", met=rss < 400.0,
+                       samples=[v["rss_mb"] for v in values],
+                       detail={"what": "RSS summed over every process of the launch (shared pages counted in each)"}),
+                Result("system_pss", median_of(values, "pss_mb"), "MiB", target="-",
+                       samples=[v["pss_mb"] for v in values],
+                       detail={"what": "PSS summed: shared pages split between the processes sharing them"}),
+            ]  # fmt: skip
+
+        return Family("startup", [trial], self.settings.startup_repetitions, summarise,
+                      rows=("startup", "system_rss", "system_pss"))  # fmt: skip
