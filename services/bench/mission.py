@@ -5,10 +5,14 @@ boxes have landed, so the points are where perception would see them. The AI pla
 :func:`services.ai.planner.plan_tour` from the drone's start; the optimum is found by brute
 force over every order (8! = 40,320 for 8 boxes). Both are open tours, as the AI flies them.
 The nearest-first tour (the workshop's bonus) is reported alongside for scale.
+
+Run as a worker (``python -m services.bench.mission --worlds 20``) so that PyBullet, which
+prints its build time on stdout when imported, stays out of the benchmark's own output.
 """
 
 from __future__ import annotations
 
+import argparse
 import itertools
 import math
 import statistics
@@ -16,10 +20,11 @@ import time
 from typing import Any
 
 from services.ai.planner import plan_tour
+from services.bench.processes import Worker
+from services.bench.sink import emit
 from sim_server.limits import PHYSICS_HZ
-from sim_server.world import World, WorldConfig
 
-__all__ = ["brute_force_length", "measure_tours", "nearest_first_length"]
+__all__ = ["brute_force_length", "measure_tours", "nearest_first_length", "tours_in_worker"]
 
 Point2 = tuple[float, float]
 _SETTLE_STEPS = 3 * PHYSICS_HZ
@@ -27,6 +32,8 @@ _SETTLE_STEPS = 3 * PHYSICS_HZ
 
 def settled_boxes(seed: int, boxes: int) -> tuple[Point2, list[Point2]]:
     """The drone's start and the landed boxes' (x, y) of the world with ``seed``."""
+    from sim_server.world import World, WorldConfig
+
     with World(WorldConfig(seed=seed, boxes=boxes)) as world:
         world.step(_SETTLE_STEPS)
         (sx, sy, _), _ = world.drone_pose()
@@ -82,3 +89,21 @@ def measure_tours(*, worlds: int = 20, boxes: int = 8) -> dict[str, Any]:
         "nearest_first_worst_ratio": max(nearest),
         "plan_ms_median": statistics.median(plan_ms),
     }
+
+
+def tours_in_worker(*, worlds: int = 20, boxes: int = 8) -> dict[str, Any]:
+    """:func:`measure_tours` in a worker process."""
+    with Worker("mission", "services.bench.mission", "--worlds", str(worlds), "--boxes", str(boxes)) as worker:
+        return worker.expect("RESULT", 300.0)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--worlds", type=int, default=20)
+    parser.add_argument("--boxes", type=int, default=8)
+    args = parser.parse_args()
+    emit("RESULT", measure_tours(worlds=args.worlds, boxes=args.boxes))
+
+
+if __name__ == "__main__":
+    main()

@@ -295,10 +295,10 @@ class Suite:
     # -- mission and startup ------------------------------------------------------------------
 
     def _mission(self) -> Family:
-        from services.bench.mission import measure_tours
+        from services.bench.mission import tours_in_worker
 
         worlds = self.settings.mission_worlds
-        trial = Trial("tours", f"{worlds} seeded worlds, 8 boxes", lambda: measure_tours(worlds=worlds, boxes=8))
+        trial = Trial("tours", f"{worlds} seeded worlds, 8 boxes", lambda: tours_in_worker(worlds=worlds, boxes=8))
 
         def summarise(readings: Readings) -> list[Result]:
             tours = readings["tours"][0]

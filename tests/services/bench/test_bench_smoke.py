@@ -1,0 +1,117 @@
+"""`skydeck bench` produces its table and JSON: structure only, never timings (shared machines)."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from services.bench.mission import brute_force_length, nearest_first_length
+from services.bench.report import Result, format_table
+from services.bench.runner import Family, Progress, Trial, run_families
+from services.bench.sink import Sink, percentile
+
+REQUIRED_KEYS = {"name", "value", "unit", "reference", "reference_value", "ratio"}
+
+
+def _bench(tmp_path: Path, *args: str, timeout_s: float) -> tuple[subprocess.CompletedProcess[str], dict]:
+    out = tmp_path / "bench.json"
+    done = subprocess.run(
+        [sys.executable, "-m", "services.cli", "bench", "--quick", "--out", str(out), *args],
+        capture_output=True,
+        text=True,
+        timeout=timeout_s,
+        cwd=tmp_path,  # no docs/img here: nothing may be written outside --out
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    return done, json.loads(out.read_text())
+
+
+def test_quick_run_of_two_families_writes_the_json_and_the_table(tmp_path: Path) -> None:
+    done, document = _bench(tmp_path, "--only", "mission,service_rtt_p50", timeout_s=50)
+    rows = {row["name"]: row for row in document["results"]}
+    assert {"mission_tour_ratio", "service_rtt_p50", "gateway_service_rtt_p50"} <= set(rows)
+    for row in document["results"]:
+        assert REQUIRED_KEYS <= set(row)
+        assert row["error"] is None
+        assert isinstance(row["value"], float)
+    direct = rows["service_rtt_p50"]
+    assert direct["reference"] == "bare FastAPI endpoint"
+    assert direct["ratio"] == pytest.approx(direct["value"] / direct["reference_value"])
+    assert rows["mission_tour_ratio"]["reference"] is None and rows["mission_tour_ratio"]["ratio"] is None
+    assert {"cpu", "logical_cpus", "python", "packages"} <= set(document["machine"])
+    assert document["run"]["quick"] is True
+    assert "service_rtt_p50" in done.stdout and "mission_tour_ratio" in done.stdout
+    assert "[" in done.stderr  # the progress bar
+    assert list(tmp_path.iterdir()) == [tmp_path / "bench.json"]
+
+
+def test_unknown_only_name_is_a_one_line_error(tmp_path: Path) -> None:
+    done = subprocess.run(
+        [sys.executable, "-m", "services.cli", "bench", "--quick", "--only", "warp_speed"],
+        capture_output=True,
+        text=True,
+        timeout=30,
+    )
+    assert done.returncode == 1
+    assert done.stderr.startswith("skydeck: error: --only: unknown warp_speed; known:")
+
+
+@pytest.mark.slow
+@pytest.mark.timeout(400)
+def test_whole_quick_run_has_every_row_of_the_issue(tmp_path: Path) -> None:
+    _, document = _bench(tmp_path, timeout_s=390)
+    names = {row["name"] for row in document["results"]}
+    assert {
+        "topic_throughput", "topic_latency_p50", "topic_latency_p99", "fanout_100", "service_rtt_p50",
+        "gateway_service_rtt_p50", "sim_rtf", "mission_tour_ratio", "startup", "zenoh_throughput",
+        "zenoh_latency_p50",
+    } <= names  # fmt: skip
+
+
+# -- the pieces, without processes ------------------------------------------------------------
+
+
+def test_runner_alternates_order_and_a_failing_family_becomes_error_rows() -> None:
+    from services.bench.processes import BenchError
+
+    order: list[str] = []
+
+    def trial(key: str) -> Trial:
+        return Trial(key, key, lambda: order.append(key) or {"v": float(len(order))})
+
+    def broken() -> dict[str, float]:
+        raise BenchError("worker never got ready")
+
+    good = Family("good", [trial("a"), trial("b")], 3, lambda r: [Result("good_row", r["a"][0]["v"], "x")])
+    bad = Family("bad", [Trial("x", "x", broken)], 2, lambda r: [], rows=("bad_row",))
+    with open("/dev/null", "w") as sink:
+        results = run_families([good, bad], Progress(8, stream=sink))
+    assert order == ["a", "b", "b", "a", "a", "b"]
+    assert [r.name for r in results] == ["good_row", "bad_row"]
+    assert results[1].error == "worker never got ready" and results[1].value is None
+    assert "ERROR" in format_table(results)
+
+
+def test_result_json_has_ratio_and_no_nan() -> None:
+    row = Result("x", 2.0, "us", "ref", 4.0, detail={"p": float("nan")}).as_json()
+    assert list(row)[:6] == ["name", "value", "unit", "reference", "reference_value", "ratio"]
+    assert row["ratio"] == 0.5 and row["detail"]["p"] is None
+
+
+def test_sink_counts_after_warmup_and_percentiles() -> None:
+    sink = Sink("throughput", warmup_s=0.0)
+    for _ in range(5):
+        sink.arrive()
+    summary = sink.summary()
+    assert summary["received"] == summary["counted"] == 5
+    assert percentile([1.0, 2.0, 3.0, 4.0, 5.0], 0.5) == 3.0
+
+
+def test_brute_force_finds_the_tour_nearest_first_misses() -> None:
+    points = [(5.0, 0.0), (-1.0, 0.0), (6.0, 0.0), (-7.0, 0.0)]
+    assert brute_force_length((0.0, 0.0), points) == pytest.approx(19.0)  # 0 -> 5 -> 6 -> -1 -> -7
+    assert nearest_first_length((0.0, 0.0), points) == pytest.approx(21.0)  # 0 -> -1 -> 5 -> 6 -> -7
