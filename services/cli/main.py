@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 import sys
 
+from pydantic import ValidationError
+
 from services.cli import interface, node, run, service, topic
 from services.cli.errors import CliError
 
@@ -48,6 +50,11 @@ def main(argv: list[str] | None = None) -> int:
         return int(args.func(args) or 0)
     except CliError as error:
         print(f"skydeck: error: {error}", file=sys.stderr)
+        return 1
+    except ValidationError as error:  # a SKYDECK_* variable that does not fit its setting
+        first = error.errors(include_url=False)[0]
+        setting = "SKYDECK_" + "_".join(str(part) for part in first["loc"]).upper()
+        print(f"skydeck: error: {setting}: {first['msg']}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
         return 130

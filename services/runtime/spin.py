@@ -7,6 +7,7 @@ import contextlib
 import logging
 import signal
 
+from services.runtime.errors import SkydeckError
 from services.runtime.node import Node
 
 __all__ = ["init", "shutdown", "spin"]
@@ -31,10 +32,18 @@ def configure_logging(level: str = "INFO") -> None:
 
 
 def spin(node: Node) -> None:
-    """Run ``node`` until Ctrl-C, SIGTERM or ``node.destroy_node()``; returns when it has stopped."""
+    """Run ``node`` until Ctrl-C, SIGTERM or ``node.destroy_node()``; returns when it has stopped.
+
+    A node that cannot start (its port taken, say) logs one line and exits with status 1.
+    """
     configure_logging(node.settings.log_level)
-    with contextlib.suppress(KeyboardInterrupt):
+    try:
         asyncio.run(_spin(node))
+    except KeyboardInterrupt:
+        pass
+    except SkydeckError as error:
+        logging.getLogger("skydeck.runtime").error("%s: %s", node.get_name(), error)
+        raise SystemExit(1) from None
 
 
 async def _spin(node: Node) -> None:

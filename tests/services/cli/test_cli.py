@@ -117,3 +117,14 @@ async def test_core_not_running_is_one_clear_line() -> None:
 async def test_bad_arguments_are_one_line(core, args) -> None:
     status, _, err = await skydeck(core.url, *args)
     assert status != 0 and err.strip().count("\n") <= 1 and "error" in err
+
+
+async def test_node_on_a_taken_port_says_so_in_one_line(core) -> None:
+    status, _, err = await skydeck(core.url, "run", "perception", "--port", str(core.port))
+    assert status == 1 and "cannot listen on 127.0.0.1" in err and "pick --port" in err
+
+
+async def test_bad_setting_in_the_environment_is_one_line(core, monkeypatch) -> None:
+    monkeypatch.setenv("SKYDECK_PORT", "abc")
+    status, _, err = await skydeck(core.url, "run", "perception")
+    assert status == 1 and err.startswith("skydeck: error: SKYDECK_PORT:") and err.count("\n") == 1
