@@ -80,7 +80,7 @@ def create_app(settings: CoreSettings | None = None) -> FastAPI:
 
     @app.websocket("/api/session")
     async def session(websocket: WebSocket) -> None:
-        await serve_session(websocket, registry)
+        await serve_session(websocket, registry, token=settings.token)
 
     @app.websocket(GATEWAY_PATH + "/{topic:path}")
     async def gateway_publication(websocket: WebSocket) -> None:

@@ -16,7 +16,7 @@ from starlette.websockets import WebSocket
 from services.core.registry import Registry
 from services.core.relay import GATEWAY_NODE, Relays
 from services.core.settings import CoreSettings
-from services.runtime.auth import NOT_AUTHORISED, token_matches
+from services.runtime.auth import NOT_AUTHORISED, presented_token, token_matches
 from services.runtime.outbox import Outbox
 from services.runtime.stream import (
     CLOSE_BAD_OPTION,
@@ -70,10 +70,16 @@ class Gateway:
             if self._registry.topic_type(name) is not None:
                 return _error(405, f"{name} is a topic, not a service: GET it or open a WebSocket to it")
             return _error(404, f"no service {name}: see `skydeck service list` or GET /api/graph")
+        # Checked here as well as on the node: a call through the core is refused even when the
+        # node behind it was started without the token.
+        if not token_matches(self._settings.token, request):
+            return _error(401, NOT_AUTHORISED)
         _, record = found
         node = record.description.name
         url = record.description.url.rstrip("/") + name
         headers = {key: value for key in _FORWARDED_HEADERS if (value := request.headers.get(key))}
+        if token := presented_token(request):
+            headers["authorization"] = f"Bearer {token}"  # also when it came as ?token= (a browser)
         try:
             reply = await self._http.post(
                 url, content=await request.body(), headers=headers, timeout=self._settings.gateway_timeout_s

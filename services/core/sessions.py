@@ -5,11 +5,13 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import logging
+import time
 
 from pydantic import ValidationError
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from services.core.registry import Registry
+from services.runtime.auth import token_matches
 from services.runtime.protocol import (
     RegisteredFrame,
     RegisterFrame,
@@ -18,7 +20,7 @@ from services.runtime.protocol import (
     UpdateFrame,
     node_frames,
 )
-from services.runtime.stream import CLOSE_INVALID_FRAME, close_with
+from services.runtime.stream import CLOSE_BAD_OPTION, CLOSE_INVALID_FRAME, close_with
 
 __all__ = ["serve_session"]
 
@@ -26,11 +28,23 @@ logger = logging.getLogger("skydeck.core")
 
 # A private close code: this session's node name was taken by a newer node.
 CLOSE_REPLACED = 4000
+NOT_AUTHORISED_SESSION = "registering needs the core's token (SKYDECK_TOKEN): Authorization: Bearer TOKEN"
+# A node with the wrong token retries twice a second: say so once in a while, not every time.
+_REFUSAL_LOG_EVERY_S = 10.0
+_last_refusal_log_s = -_REFUSAL_LOG_EVERY_S
 
 
-async def serve_session(websocket: WebSocket, registry: Registry) -> None:
-    """Hold one node's registration for as long as its socket is open."""
+async def serve_session(websocket: WebSocket, registry: Registry, *, token: str = "") -> None:
+    """Hold one node's registration for as long as its socket is open.
+
+    With a ``token``, a session that does not present it is closed with 1008 before it can
+    register: otherwise any local process could take a node's name and redirect its callers.
+    """
     await websocket.accept()
+    if not token_matches(token, websocket):
+        _log_refusal(websocket)
+        await close_with(websocket, CLOSE_BAD_OPTION, NOT_AUTHORISED_SESSION)
+        return
     outgoing: asyncio.Queue[str] = asyncio.Queue()
     writer = asyncio.create_task(_write(websocket, outgoing))
     name = None
@@ -69,6 +83,16 @@ async def serve_session(websocket: WebSocket, registry: Registry) -> None:
         if name is not None:
             registry.unregister(name, send)
             logger.info("node %s left", name)
+
+
+def _log_refusal(websocket: WebSocket) -> None:
+    global _last_refusal_log_s
+    now = time.monotonic()
+    if now - _last_refusal_log_s >= _REFUSAL_LOG_EVERY_S:
+        _last_refusal_log_s = now
+        client = websocket.client
+        where = f"{client.host}:{client.port}" if client else "an unknown peer"
+        logger.warning("refused a node session from %s: no token or the wrong one (is its SKYDECK_TOKEN set?)", where)
 
 
 async def _write(websocket: WebSocket, outgoing: asyncio.Queue[str]) -> None:

@@ -8,10 +8,19 @@ and the registry stays open. Tokens are compared in constant time and never logg
 from __future__ import annotations
 
 import hmac
+import logging
+import re
 
 from starlette.requests import HTTPConnection
 
-__all__ = ["NOT_AUTHORISED", "TOKEN_QUERY_PARAMETER", "presented_token", "token_matches"]
+__all__ = [
+    "NOT_AUTHORISED",
+    "TOKEN_QUERY_PARAMETER",
+    "WEBSOCKET_CLIENT_LOGGER",
+    "RedactTokens",
+    "presented_token",
+    "token_matches",
+]
 
 TOKEN_QUERY_PARAMETER = "token"
 NOT_AUTHORISED = "publishing and service calls need the token: Authorization: Bearer TOKEN or ?token=TOKEN"
@@ -31,3 +40,23 @@ def token_matches(expected: str, connection: HTTPConnection) -> bool:
     if not expected:
         return True
     return hmac.compare_digest(presented_token(connection).encode(), expected.encode())
+
+
+_SECRETS = re.compile(r"(?i)(authorization:\s*(?:bearer\s+)?|[?&]token=)[^\s&]+")
+
+
+class RedactTokens(logging.Filter):
+    """Replaces the values of ``Authorization`` headers and ``token=`` queries with ``***``."""
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        text = record.getMessage()
+        redacted = _SECRETS.sub(r"\1***", text)
+        if redacted != text:
+            record.msg, record.args = redacted, None
+        return True
+
+
+# The websockets library logs every handshake header at DEBUG, the Authorization header (and so
+# the token) among them: the node's outgoing sockets (session, links) log through this logger.
+WEBSOCKET_CLIENT_LOGGER = logging.getLogger("skydeck.websockets")
+WEBSOCKET_CLIENT_LOGGER.addFilter(RedactTokens())

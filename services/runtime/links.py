@@ -13,6 +13,8 @@ from collections.abc import Callable
 from websockets.asyncio.client import connect
 from websockets.exceptions import InvalidHandshake, InvalidURI, WebSocketException
 
+from services.runtime.auth import WEBSOCKET_CLIENT_LOGGER
+
 __all__ = ["PublisherLink", "stream_url"]
 
 _BACKOFF_FIRST_S = 0.05
@@ -63,6 +65,7 @@ class PublisherLink:
                     self.url,
                     additional_headers=self._headers,
                     compression=None,
+                    logger=WEBSOCKET_CLIENT_LOGGER,
                     max_size=self._max_message_bytes,
                     open_timeout=2.0,
                     ping_interval=self._ping_interval_s,

@@ -14,8 +14,9 @@ from typing import TYPE_CHECKING
 
 from pydantic import ValidationError
 from websockets.asyncio.client import ClientConnection, connect
-from websockets.exceptions import InvalidHandshake, WebSocketException
+from websockets.exceptions import ConnectionClosed, InvalidHandshake, WebSocketException
 
+from services.runtime.auth import WEBSOCKET_CLIENT_LOGGER
 from services.runtime.links import stream_url
 from services.runtime.protocol import (
     NodeDescription,
@@ -36,12 +37,17 @@ __all__ = ["CoreSession", "RegistrationRejected"]
 _RETRY_FIRST_S = 0.1
 _RETRY_MAX_S = 0.5
 _STATS_PERIOD_S = 1.0
+_CLOSE_POLICY = 1008  # the core refused the session (no token, or the wrong one)
 
 logger = logging.getLogger("skydeck.runtime")
 
 
 class RegistrationRejected(Exception):
     """The core refused this node (for example, a newer node took its name)."""
+
+
+def _refused(error: BaseException) -> bool:
+    return isinstance(error, ConnectionClosed) and error.rcvd is not None and error.rcvd.code == _CLOSE_POLICY
 
 
 class CoreSession:
@@ -80,6 +86,7 @@ class CoreSession:
                     url,
                     additional_headers=self._headers,
                     compression=None,
+                    logger=WEBSOCKET_CLIENT_LOGGER,
                     open_timeout=2.0,
                     ping_interval=2.0,
                     ping_timeout=4.0,
@@ -99,6 +106,12 @@ class CoreSession:
                     await self._serve(websocket)
             except (OSError, TimeoutError, InvalidHandshake, WebSocketException, EOFError) as error:
                 logger.debug("core session: %s", error)
+                if _refused(error) and not said_waiting:
+                    logger.warning(
+                        "the core at %s refused %s: %s; retrying",
+                        self.core_url, self._describe().name, error.rcvd.reason,  # type: ignore[attr-defined]
+                    )
+                    said_waiting = True
             self.registered.clear()
             if not said_waiting:
                 if registrations:
