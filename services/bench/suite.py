@@ -181,7 +181,7 @@ class Suite:
             self.plot_data["throughput_by_size"] = {key: values[0]["rate"] for key, values in readings.items()}
             return []
 
-        return Family("plot: throughput by message size", trials, 1, summarise)
+        return Family("plot_throughput_size", trials, 1, summarise)
 
     def _topic_trial_sized(self, transport: str, size: int) -> Any:
         def run() -> dict[str, Any]:
@@ -290,7 +290,7 @@ class Suite:
             self.plot_data["rtf_by_boxes"] = {key: values[0] for key, values in readings.items()}
             return []
 
-        return Family("plot: RTF by box count", trials, 1, summarise)
+        return Family("plot_rtf_boxes", trials, 1, summarise)
 
     # -- mission and startup ------------------------------------------------------------------
 
