@@ -89,9 +89,11 @@ class ControlState(Message):
     __ros_type__ = "ros_workshop/msg/ControlState"
     __ros_comment__ = (
         "# The control node's flight phase: landed, taking_off, flying or landing\n"
-        "# setpoint: the position the drone is being sent to"
+        "# setpoint: the position the drone is being sent to\n"
+        "# message: what is wrong (e.g. no drone pose: holding), empty when all is well"
     )
 
     header: Header = Field(default_factory=Header)
     state: ControlPhase = "landed"
     setpoint: Point = Field(default_factory=Point)
+    message: String = ""

@@ -12,13 +12,14 @@ import asyncio
 import contextlib
 import math
 import time
+from collections.abc import Callable
 
 from services.ai.planner import plan_tour
 from services.ai.progress import ProgressStore, default_state_dir, world_key
 from services.runtime import Node, NodeSettings, ServiceError, spin
 from services.runtime.settings import settings_with_default_port
 from shared_models.geometry_msgs import Point, Polygon, PoseStamped
-from shared_models.ros_workshop import AiStatus, FlyCommand
+from shared_models.ros_workshop import AiStatus, ControlState, FlyCommand
 from shared_models.std_msgs import Header
 from shared_models.std_srvs import Trigger, TriggerRequest, TriggerResponse
 from sim_server.limits import START_XY_M
@@ -32,6 +33,13 @@ HOME_XY_M = START_XY_M
 STATUS_PERIOD_S = 1.0
 STALE_POSE_S = 1.0
 _RETRY_S = 1.0
+# Boxes count as at rest (and their world key as final) when this many consecutive box messages
+# agree within the tolerance: falling boxes would give a plan, and a key, of a world in motion.
+SETTLED_MESSAGES = 3
+SETTLED_TOLERANCE_M = 0.02
+# Control reporting another goal than the AI's for this long means it lost the command (it was
+# restarted): the command is sent again. Long enough for control's state to catch up with a call.
+CONTROL_FORGOT_S = 1.5
 
 
 class AiNode(Node):
@@ -44,7 +52,8 @@ class AiNode(Node):
         self.boxes: list[tuple[float, float]] = []
         self._pose_wall_s = -math.inf
         self._pose_event = asyncio.Event()
-        self._boxes_event = asyncio.Event()
+        self._boxes_event = asyncio.Event()  # set while the latest boxes are at rest
+        self._recent_boxes: list[list[tuple[float, float, float]]] = []
         self.status = AiStatus(state="idle", target=-1)
         self.take_off = self.create_client(Trigger, "/control/take_off")
         self.fly = self.create_client(FlyCommand, "/control/fly")
@@ -52,6 +61,8 @@ class AiNode(Node):
         self.status_publisher = self.create_publisher(AiStatus, "/ai/status", 10, latched=True)
         self.create_subscription(PoseStamped, "/drone/pose", self.on_pose, 1)
         self.create_subscription(Polygon, "/perception/boxes", self.on_boxes, 1)
+        self.control_state: ControlState | None = None
+        self.create_subscription(ControlState, "/control/state", self.on_control_state, 1)
         self.create_service(Trigger, "/ai/start", self.handle_start)
         self.create_service(Trigger, "/ai/stop", self.handle_stop)
         self.create_timer(STATUS_PERIOD_S, self.publish_status, wall_clock=True)
@@ -65,10 +76,20 @@ class AiNode(Node):
         self._pose_event.set()
 
     def on_boxes(self, msg: Polygon) -> None:
-        self.boxes = [(p.x, p.y) for p in msg.points]
-        self._boxes_event.set()
+        self._recent_boxes = [*self._recent_boxes[1 - SETTLED_MESSAGES :], [(p.x, p.y, p.z) for p in msg.points]]
+        if _at_rest(self._recent_boxes):
+            self.boxes = [(p.x, p.y) for p in msg.points]
+            self._boxes_event.set()
+        else:
+            self._boxes_event.clear()
+
+    def on_control_state(self, msg: ControlState) -> None:
+        self.control_state = msg
 
     async def handle_start(self, request: TriggerRequest) -> TriggerResponse:
+        # Plan on boxes that arrive from now on: after a simulator reset, the new world's.
+        self._recent_boxes.clear()
+        self._boxes_event.clear()
         self._start_mission()
         return TriggerResponse(success=True, message="Mission (re)started.")
 
@@ -103,7 +124,7 @@ class AiNode(Node):
             self._update(state="error", message=str(error))
 
     async def _mission_steps(self) -> None:
-        self._update(state="idle", message="waiting for the drone pose and the boxes")
+        self._update(state="idle", message="waiting for the drone pose and the boxes (at rest)")
         await self._boxes_event.wait()
         position = await self._fresh_position()
         boxes = list(self.boxes)
@@ -140,22 +161,50 @@ class AiNode(Node):
         self._update(state="landing", target=-1, message="all boxes visited: returning to the start to land")
         await self._fly_to(HOME_XY_M)
         await self.land.call(Trigger.Request())
+        sent_s = time.monotonic()
         while (await self._fresh_position()).z > 0.1:
-            pass
+            if self._control_forgot(sent_s, lambda state: state.state in ("landing", "landed")):
+                self.get_logger().warning("control is not landing (was it restarted?): asking again")
+                await self.land.call(Trigger.Request())
+                sent_s = time.monotonic()
         self._update(state="done", message=f"visited {len(visited)} boxes")
 
     async def _fly_to(self, target: tuple[float, float]) -> None:
-        """One fly command, then wait until the drone is within the visit radius."""
-        while True:
-            response = await self.fly.call(FlyCommand.Request(x=target[0], y=target[1]))
-            if response.success or response.message.startswith("Already flying"):
-                break
-            self.get_logger().warning("fly refused: %s; retrying in %.0f s", response.message, _RETRY_S)
-            await asyncio.sleep(_RETRY_S)
+        """One fly command, then wait until the drone is within the visit radius.
+
+        The command is sent again only if control stops reporting it as its goal (a restarted
+        control starts with none): never while control is on its way.
+        """
+        await self._send_fly(target)
+        sent_s = time.monotonic()
+
+        def flying_there(state: ControlState) -> bool:
+            return math.hypot(state.setpoint.x - target[0], state.setpoint.y - target[1]) <= 1e-3
+
         while True:
             position = await self._fresh_position()
             if math.hypot(position.x - target[0], position.y - target[1]) <= VISIT_RADIUS_M:
                 return
+            if self._control_forgot(sent_s, flying_there):
+                self.get_logger().warning("control is not flying to (%.1f, %.1f) (was it restarted?): sending it again", *target)
+                await self._send_fly(target)
+                sent_s = time.monotonic()
+
+    async def _send_fly(self, target: tuple[float, float]) -> None:
+        while True:
+            response = await self.fly.call(FlyCommand.Request(x=target[0], y=target[1]))
+            if response.success or response.message.startswith("Already flying"):
+                return
+            self.get_logger().warning("fly refused: %s; retrying in %.0f s", response.message, _RETRY_S)
+            await asyncio.sleep(_RETRY_S)
+
+    def _control_forgot(self, sent_s: float, doing_it: Callable[[ControlState], bool]) -> bool:
+        """Whether control's state has shown something else than the command sent at ``sent_s``
+        for longer than CONTROL_FORGOT_S (only judged on states received since then)."""
+        state = self.control_state
+        if state is None or time.monotonic() - sent_s < CONTROL_FORGOT_S:
+            return False
+        return not doing_it(state)
 
     async def _fresh_position(self) -> Point:
         """The next drone pose (waits for one; says so when the simulator goes quiet)."""
@@ -185,6 +234,18 @@ class AiNode(Node):
     def publish_status(self) -> None:
         self.status.header = Header(stamp=self.get_clock().now().to_msg(), frame_id="map")
         self.status_publisher.publish(self.status.model_copy())
+
+
+def _at_rest(recent: list[list[tuple[float, float, float]]]) -> bool:
+    """Whether the last few box messages agree: same boxes, none moved more than the tolerance."""
+    if len(recent) < SETTLED_MESSAGES:
+        return False
+    first = recent[0]
+    return all(
+        len(boxes) == len(first)
+        and all(math.dist(a, b) <= SETTLED_TOLERANCE_M for a, b in zip(boxes, first, strict=True))
+        for boxes in recent[1:]
+    )
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -37,6 +37,7 @@ STATE_PERIOD_S = 0.5
 AIRBORNE_Z_M = FLIGHT_ALTITUDE_M - 0.2
 # A pose older than this (wall time) means the simulator is gone: control holds and says so.
 STALE_POSE_S = 1.0
+STALE_MESSAGE = "no drone pose: holding the setpoint (simulator not publishing)"
 _SAME_TARGET_M = 1e-3
 
 
@@ -47,6 +48,7 @@ class ControlNode(Node):
         super().__init__("control", settings=settings or settings_with_default_port(DEFAULT_PORT))
         self.drone_position: Point | None = None
         self._pose_wall_s = -math.inf
+        self._stale_reported = False
         self.setpoint = Point()
         self.state: ControlPhase = "landed"
         self.setpoint_publisher = self.create_publisher(PositionTarget, "/drone/setpoint", 10)
@@ -57,21 +59,34 @@ class ControlNode(Node):
         self.create_service(Trigger, "/control/land", self.handle_land)
         self.create_timer(SETPOINT_PERIOD_S, self.stream_setpoint)
         self.create_timer(STATE_PERIOD_S, self.publish_state, wall_clock=True)
-        self._stale_reported = False
 
     # -- inputs -------------------------------------------------------------------------------
 
     def on_pose(self, msg: PoseStamped) -> None:
+        first = self.drone_position is None
         self.drone_position = msg.pose.position
         self._pose_wall_s = time.monotonic()
+        if first and self.state == "landed" and self.drone_position.z > ON_GROUND_Z_M:
+            self._adopt_airborne_drone()
         if self._stale_reported:
             self._stale_reported = False
             self.get_logger().info("drone pose is back")
+            self.publish_state()
         z = self.drone_position.z
         if self.state == "taking_off" and z >= AIRBORNE_Z_M:
             self._set_state("flying")
         elif self.state == "landing" and z <= ON_GROUND_Z_M:
             self._set_state("landed")
+
+    def _adopt_airborne_drone(self) -> None:
+        # A restarted control finds the drone in the air (held by the simulator's failsafe): take
+        # it over where it is, at flight altitude, so take-off, fly and land work as before.
+        position = self.drone_position or Point()
+        self.setpoint = Point(x=position.x, y=position.y, z=FLIGHT_ALTITUDE_M)
+        self.get_logger().warning(
+            "the drone is already in the air at (%.1f, %.1f, %.1f): holding it there", position.x, position.y, position.z
+        )
+        self._set_state("flying")
 
     def pose_is_fresh(self) -> bool:
         """Whether the simulator's pose stream is alive."""
@@ -104,6 +119,7 @@ class ControlNode(Node):
             return FlyCommandResponse(success=False, message=f"Already flying to ({x:g}, {y:g}).")
         self.setpoint = Point(x=x, y=y, z=FLIGHT_ALTITUDE_M)
         self.get_logger().info("Flying to (%g, %g)", x, y)
+        self.publish_state()
         return FlyCommandResponse(success=True, message=f"Flying to ({x:g}, {y:g}).")
 
     def handle_land(self, request: TriggerRequest) -> TriggerResponse:
@@ -120,11 +136,6 @@ class ControlNode(Node):
         """The offboard stream: re-sent at 30 Hz while the drone is under control."""
         if self.state == "landed":
             return
-        if not self.pose_is_fresh() and not self._stale_reported and self.drone_position is not None:
-            self._stale_reported = True
-            self.get_logger().warning(
-                "no drone pose for %.1f s: holding the setpoint, is the simulator running?", STALE_POSE_S
-            )
         self.setpoint_publisher.publish(
             PositionTarget(
                 header=Header(stamp=self.get_clock().now().to_msg(), frame_id="map"),
@@ -142,11 +153,19 @@ class ControlNode(Node):
             self.publish_state()
 
     def publish_state(self) -> None:
+        """``/control/state``, on change and twice a second (wall time, so also when the simulator
+        and its clock are gone: that is when the stale pose must be noticed and reported)."""
+        if not self.pose_is_fresh() and not self._stale_reported and self.drone_position is not None:
+            self._stale_reported = True
+            self.get_logger().warning(
+                "no drone pose for %.1f s: holding the setpoint, is the simulator running?", STALE_POSE_S
+            )
         self.state_publisher.publish(
             ControlState(
                 header=Header(stamp=self.get_clock().now().to_msg(), frame_id="map"),
                 state=self.state,
                 setpoint=self.setpoint,
+                message=STALE_MESSAGE if self._stale_reported else "",
             )
         )
 

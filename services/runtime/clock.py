@@ -35,13 +35,16 @@ class Clock:
     """Wall clock, or sim clock following ``/clock`` messages when ``use_sim_time`` is set.
 
     Sim time starts at zero and only moves when a ``/clock`` message arrives; timers on a sim
-    clock therefore run at the simulator's pace (faster or slower than real time).
+    clock therefore run at the simulator's pace (faster or slower than real time). When sim time
+    jumps back (a restarted simulator starts again at zero), waits end and timers start over from
+    the new time, as ROS timers do on a backwards jump, instead of sleeping until the old time.
     """
 
     def __init__(self, *, use_sim_time: bool = False) -> None:
         self.use_sim_time = use_sim_time
         self._sim_ns = 0
         self._advanced = asyncio.Event()
+        self.jumps_back = 0
 
     def now(self) -> ClockTime:
         """The current time on this clock."""
@@ -57,16 +60,20 @@ class Clock:
 
     def set_sim_time(self, stamp: Time) -> None:
         """Advance sim time to ``stamp`` (called for each ``/clock`` message)."""
-        self._sim_ns = stamp.sec * 1_000_000_000 + stamp.nanosec
+        sim_ns = stamp.sec * 1_000_000_000 + stamp.nanosec
+        if sim_ns < self._sim_ns:
+            self.jumps_back += 1
+        self._sim_ns = sim_ns
         self._advanced.set()
 
     async def sleep_until(self, deadline_s: float) -> None:
-        """Wait until ``now_s()`` reaches ``deadline_s``."""
+        """Wait until ``now_s()`` reaches ``deadline_s``, or sim time jumps back."""
         if not self.use_sim_time:
             delay = deadline_s - time.monotonic()
             if delay > 0:
                 await asyncio.sleep(delay)
             return
-        while self._sim_ns * 1e-9 < deadline_s:
+        jumps_back = self.jumps_back
+        while self._sim_ns * 1e-9 < deadline_s and self.jumps_back == jumps_back:
             self._advanced.clear()
             await self._advanced.wait()

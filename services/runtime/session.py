@@ -46,8 +46,11 @@ class RegistrationRejected(Exception):
     """The core refused this node (for example, a newer node took its name)."""
 
 
-def _refused(error: BaseException) -> bool:
-    return isinstance(error, ConnectionClosed) and error.rcvd is not None and error.rcvd.code == _CLOSE_POLICY
+def _refusal(error: BaseException) -> str | None:
+    """The core's reason when it closed the session as not allowed (1008), else None."""
+    if isinstance(error, ConnectionClosed) and error.rcvd is not None and error.rcvd.code == _CLOSE_POLICY:
+        return error.rcvd.reason
+    return None
 
 
 class CoreSession:
@@ -106,11 +109,8 @@ class CoreSession:
                     await self._serve(websocket)
             except (OSError, TimeoutError, InvalidHandshake, WebSocketException, EOFError) as error:
                 logger.debug("core session: %s", error)
-                if _refused(error) and not said_waiting:
-                    logger.warning(
-                        "the core at %s refused %s: %s; retrying",
-                        self.core_url, self._describe().name, error.rcvd.reason,  # type: ignore[attr-defined]
-                    )
+                if (reason := _refusal(error)) is not None and not said_waiting:
+                    logger.warning("the core at %s refused %s: %s; retrying", self.core_url, self._describe().name, reason)
                     said_waiting = True
             self.registered.clear()
             if not said_waiting:

@@ -59,6 +59,9 @@ class Timer:
                 continue
             if self._canceled:
                 continue
+            if clock.use_sim_time and clock.now_s() < due_s:  # sim time jumped back (a restarted simulator)
+                due_s = clock.now_s() + period_s
+                continue
             await call_user(self.callback, logger=logger, what=what)
             due_s += period_s
             now_s = clock.now_s()

@@ -87,7 +87,7 @@ ROS_FIELDS: dict[str, list[str]] = {
         "tour",
         "tour_length",
     ],
-    "ros_workshop/msg/ControlState": ["header", "state", "setpoint"],
+    "ros_workshop/msg/ControlState": ["header", "state", "setpoint", "message"],
 }
 
 MESSAGES = {name: cls for name, cls in all_interfaces().items() if issubclass(cls, Message)}
