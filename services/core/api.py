@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Depends, HTTPException, Request
+from pydantic import BaseModel
 
 from services.core.registry import Registry
 from shared_models import (
@@ -21,6 +22,16 @@ __all__ = ["router"]
 router = APIRouter(prefix="/api", tags=["registry"])
 
 
+class ErrorDetail(BaseModel):
+    """Why a request was not answered, and what to do."""
+
+    detail: str
+
+
+def _not_found(what: str) -> dict[int | str, dict[str, Any]]:
+    return {404: {"model": ErrorDetail, "description": f"No such {what}"}}
+
+
 def _registry(request: Request) -> Registry:
     return request.app.state.registry  # type: ignore[no-any-return]
 
@@ -34,7 +45,7 @@ async def graph(registry: RegistryDep) -> dict[str, Any]:
     return registry.graph()
 
 
-@router.get("/nodes/{name:path}")
+@router.get("/nodes/{name:path}", responses=_not_found("node"))
 async def node_info(name: str, registry: RegistryDep) -> dict[str, Any]:
     """One node: URL, pid, publications, subscriptions and services (`rosnode info`)."""
     node_name = "/" + name.strip("/")
@@ -44,7 +55,7 @@ async def node_info(name: str, registry: RegistryDep) -> dict[str, Any]:
     raise HTTPException(404, f"no node {node_name}: see `skydeck node list`")
 
 
-@router.get("/topics/{name:path}")
+@router.get("/topics/{name:path}", responses=_not_found("topic"))
 async def topic_info(name: str, registry: RegistryDep) -> dict[str, Any]:
     """One topic: type, publishers, subscribers and rate (`rostopic info`)."""
     topic_name = "/" + name.strip("/")
@@ -54,7 +65,7 @@ async def topic_info(name: str, registry: RegistryDep) -> dict[str, Any]:
     raise HTTPException(404, f"no topic {topic_name}: see `skydeck topic list`")
 
 
-@router.get("/services/{name:path}")
+@router.get("/services/{name:path}", responses=_not_found("service"))
 async def service_info(name: str, registry: RegistryDep) -> dict[str, Any]:
     """One service: type, hosting node and its URL (`rosservice info`)."""
     service_name = "/" + name.strip("/")
@@ -75,7 +86,7 @@ async def interfaces() -> dict[str, Any]:
     }
 
 
-@router.get("/interfaces/{name:path}")
+@router.get("/interfaces/{name:path}", responses=_not_found("interface"))
 async def interface(name: str) -> dict[str, Any]:
     """One type: its `interface show` text, JSON schema and default value."""
     try:

@@ -57,7 +57,7 @@ class Gateway:
     async def handle_http(self, request: Request) -> Response:
         """Route one GET (latest message) or POST (service call) by its path."""
         try:
-            name = resolve_name(request.url.path)
+            name = resolve_name(request.scope["path"])  # decoded: the name as the user wrote it
         except InvalidNameError as error:
             return _error(404, str(error))
         if request.method == "POST":
@@ -122,7 +122,7 @@ class Gateway:
         """Relay a topic to one client, and publish what it sends (validated) to the topic."""
         await websocket.accept()
         try:
-            topic = resolve_name(websocket.url.path)
+            topic = resolve_name(websocket.scope["path"])
             options = StreamOptions.from_query(dict(websocket.query_params))
             declared_type = self._declared_type(websocket.query_params.get("type"))
         except (InvalidNameError, FrameRejected) as error:

@@ -15,6 +15,10 @@ from services.core.relay import GATEWAY_NODE
 __all__ = ["aggregate_openapi"]
 
 _FETCH_TIMEOUT_S = 1.5
+_GATEWAY_RESPONSES = {
+    "503": {"description": "The node hosting the service is not reachable"},
+    "504": {"description": "The service did not answer in time (SKYDECK_GATEWAY_TIMEOUT_S)"},
+}
 
 
 async def aggregate_openapi(core_schema: dict[str, Any], registry: Registry, http: httpx.AsyncClient) -> dict[str, Any]:
@@ -32,8 +36,10 @@ async def aggregate_openapi(core_schema: dict[str, Any], registry: Registry, htt
         for path, item in node_schema.get("paths", {}).items():
             if path not in names:
                 continue
-            for operation in item.values():
+            for method, operation in item.items():
                 operation["tags"] = [f"node {description.name}"]
+                if method == "post":  # what the gateway itself may answer for a service call
+                    operation.setdefault("responses", {}).update(_GATEWAY_RESPONSES)
                 operation["operationId"] = f"{operation.get('operationId', path)}__{description.name.strip('/')}"
             paths[path] = item
         components.update(node_schema.get("components", {}).get("schemas", {}))

@@ -156,6 +156,11 @@ class NodeApp:
             summary=f"{service.name} ({service.srv_type.__ros_type__})",
             description=(service.srv_type.__doc__ or "").strip().splitlines()[0] if service.srv_type.__doc__ else "",
             name=f"service:{service.name}",
-            responses={401: {"description": "Token required"}, 500: {"description": "The handler failed"}},
+            responses={
+                400: {"description": "The body is not readable as JSON text (not UTF-8)"},
+                401: {"description": "Token required"},
+                413: {"description": "The body is over the size limit"},
+                500: {"description": "The handler failed"},
+            },
         )
         self.fastapi.openapi_schema = None
