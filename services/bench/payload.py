@@ -1,22 +1,22 @@
 """The message every topic benchmark sends: a PoseStamped, as a Skydeck message and as plain JSON.
 
 Skydeck, the bare websockets pair and zenoh all carry the same bytes (the JSON of this
-PoseStamped). Latency runs put the send time in ``header.stamp``: ``time.monotonic_ns()`` is
+PoseStamped). Skydeck serialises each message with pydantic, as a node does; the references
+fill a prepared JSON template instead (``frame_template``), the cheapest way to make each frame,
+so that they stay the limit (``json.dumps`` of a 64 KiB message takes longer than sending it). Latency runs put the send time in ``header.stamp``: ``time.monotonic_ns()`` is
 CLOCK_MONOTONIC, one clock for every process on a Linux machine, so a stamp taken by the
 publisher can be subtracted from a reading taken by the subscriber.
 """
 
 from __future__ import annotations
 
-import json
 import time
-from typing import Any
 
 from shared_models.builtin_interfaces import Time
 from shared_models.geometry_msgs import Point, Pose, PoseStamped, Quaternion
 from shared_models.std_msgs import Header
 
-__all__ = ["TOPIC", "latency_us", "pose_dict", "pose_message", "stamp_now", "stamped_dict_json"]
+__all__ = ["TOPIC", "frame_template", "latency_us", "pose_message", "stamp_now", "stamped_frame"]
 
 TOPIC = "/bench/pose"
 _NS = 1_000_000_000
@@ -38,26 +38,32 @@ def pose_message(size_bytes: int | None = None) -> PoseStamped:
     return msg
 
 
-def pose_dict(size_bytes: int | None = None) -> dict[str, Any]:
-    """The same message as a plain dict (what a bare client builds), JSON-identical."""
-    return json.loads(pose_message(size_bytes).model_dump_json())
+_SENTINELS = (987654321, 987654322, 987654323)  # seq, sec, nanosec: unique in the JSON
+
+
+def frame_template(size_bytes: int | None = None) -> str:
+    """The message's JSON with ``%d`` for seq, stamp sec and stamp nanosec (``template % (...)``)."""
+    msg = pose_message(size_bytes)
+    msg.header.seq, msg.header.stamp.sec, msg.header.stamp.nanosec = _SENTINELS
+    text = msg.model_dump_json().replace("%", "%%")
+    for sentinel in _SENTINELS:
+        if text.count(str(sentinel)) != 1:
+            raise ValueError(f"sentinel {sentinel} is not unique in the benchmark message")
+        text = text.replace(str(sentinel), "%d")
+    return text
 
 
 def stamp_now(stamp: Time) -> None:
-    """Set ``stamp`` to now on the machine-wide monotonic clock."""
+    """Set ``stamp`` to now on the machine-wide monotonic clock (for Skydeck publishers)."""
     now = time.monotonic_ns()
     stamp.sec = now // _NS
     stamp.nanosec = now % _NS
 
 
-def stamped_dict_json(payload: dict[str, Any], seq: int) -> str:
-    """The JSON of ``payload`` with ``seq`` and a monotonic stamp of now (for bare publishers)."""
-    header = payload["header"]
+def stamped_frame(template: str, seq: int) -> str:
+    """A frame from :func:`frame_template` with ``seq`` and a monotonic stamp of now."""
     now = time.monotonic_ns()
-    header["seq"] = seq
-    header["stamp"]["sec"] = now // _NS
-    header["stamp"]["nanosec"] = now % _NS
-    return json.dumps(payload, separators=(",", ":"))
+    return template % (seq, now // _NS, now % _NS)
 
 
 def latency_us(sec: int, nanosec: int) -> float:

@@ -3,10 +3,10 @@
     python -m services.bench.topic_websockets pub --mode throughput   # READY {"port": P}
     python -m services.bench.topic_websockets sub --port P            # RESULT on `stop`
 
-The same JSON as Skydeck's PoseStamped, serialised per message with ``json.dumps`` (Skydeck
-serialises with pydantic) and decoded per message with ``json.loads`` (Skydeck validates into a
-PoseStamped): the least an application can do with a message, and nothing more. No registry, no
-validation, no queues: the limit of Python WebSockets on this machine.
+The same JSON as Skydeck's PoseStamped, each frame made from a prepared template (Skydeck
+serialises with pydantic) and decoded with ``json.loads`` (Skydeck validates into a
+PoseStamped): the least an application can do with a message. No registry, no validation, no
+queues: the limit of Python WebSockets on this machine.
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ from websockets.asyncio.client import connect
 from websockets.asyncio.server import ServerConnection, serve
 from websockets.exceptions import ConnectionClosed
 
-from services.bench.payload import pose_dict, stamped_dict_json
+from services.bench.payload import frame_template, stamped_frame
 from services.bench.sink import Sink, emit, topic_arguments, wait_for_stop_async
 from services.bench.topic_skydeck import paced
 
@@ -29,7 +29,7 @@ _MAX_SIZE = 1 << 20  # Skydeck's frame limit
 
 async def publisher(args: argparse.Namespace) -> None:
     done: asyncio.Future[dict[str, float]] = asyncio.get_running_loop().create_future()
-    payload = pose_dict(args.size)
+    template = frame_template(args.size)
 
     async def handler(websocket: ServerConnection) -> None:
         if done.done():
@@ -39,19 +39,16 @@ async def publisher(args: argparse.Namespace) -> None:
         try:
             if args.mode == "throughput":
                 end = start + args.duration
-                header = payload["header"]
-                dumps = json.dumps
                 while time.monotonic() < end:
                     sent += 1
-                    header["seq"] = sent
-                    await websocket.send(dumps(payload, separators=(",", ":")))
+                    await websocket.send(template % (sent, 0, 0))
             else:
                 count = 0
 
                 async def send() -> None:
                     nonlocal count
                     count += 1
-                    await websocket.send(stamped_dict_json(payload, count))
+                    await websocket.send(stamped_frame(template, count))
 
                 sent = await paced(args.rate, args.duration, send)
         except ConnectionClosed:

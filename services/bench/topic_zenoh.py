@@ -3,7 +3,7 @@
     python -m services.bench.topic_zenoh sub --port P     # listens on tcp/127.0.0.1:P; READY
     python -m services.bench.topic_zenoh pub --port P     # connects, waits for a match, publishes
 
-The same JSON bytes, serialised with ``json.dumps`` and decoded with ``json.loads`` per message
+The same JSON bytes, made from a prepared template and decoded with ``json.loads`` per message,
 as the bare websockets pair does. Scouting is off and the endpoint explicit, so the two find
 each other at once and nothing else on the machine joins in.
 """
@@ -18,7 +18,7 @@ from typing import Any
 
 import zenoh
 
-from services.bench.payload import pose_dict, stamped_dict_json
+from services.bench.payload import frame_template, stamped_frame
 from services.bench.sink import Sink, emit, topic_arguments, wait_for_stop
 
 _KEY = "bench/pose"
@@ -43,7 +43,7 @@ def _matched(pub: zenoh.Publisher) -> bool:
 
 
 def publisher(args: argparse.Namespace) -> None:
-    payload = pose_dict(args.size)
+    template = frame_template(args.size)
     with zenoh.open(_config(f"tcp/127.0.0.1:{args.port}", listen=False)) as session:
         pub = session.declare_publisher(_KEY)
         deadline = time.monotonic() + _MATCH_TIMEOUT_S
@@ -56,12 +56,10 @@ def publisher(args: argparse.Namespace) -> None:
         sent = 0
         if args.mode == "throughput":
             end = start + args.duration
-            header = payload["header"]
-            dumps, put = json.dumps, pub.put
+            put = pub.put
             while time.monotonic() < end:
                 sent += 1
-                header["seq"] = sent
-                put(dumps(payload, separators=(",", ":")).encode())
+                put((template % (sent, 0, 0)).encode())
         else:
             period_s = 1.0 / args.rate
             while (now := time.monotonic()) - start < args.duration:
@@ -69,7 +67,7 @@ def publisher(args: argparse.Namespace) -> None:
                 if due > now:
                     time.sleep(due - now)
                 sent += 1
-                pub.put(stamped_dict_json(payload, sent).encode())
+                pub.put(stamped_frame(template, sent).encode())
         wall_s, cpu_s = time.monotonic() - start, time.process_time() - cpu_start
         time.sleep(0.3)
         emit("RESULT", {"sent": sent, "wall_s": wall_s, "cpu_s": cpu_s, "rate": sent / wall_s})
