@@ -30,6 +30,7 @@ from services.core.relay import GATEWAY_PATH, Relays
 from services.core.sessions import serve_session
 from services.core.settings import CoreSettings
 from services.runtime.limits import BodySizeLimit
+from services.runtime.origin import SameOriginOnly
 
 __all__ = ["create_app"]
 
@@ -71,6 +72,7 @@ def create_app(settings: CoreSettings | None = None) -> FastAPI:
     app.state.registry = registry
     app.state.settings = settings
     app.add_middleware(BodySizeLimit, max_bytes=settings.max_message_bytes)
+    app.add_middleware(SameOriginOnly)
     app.include_router(api_router)
 
     @app.get("/health", tags=["core"])

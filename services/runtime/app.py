@@ -20,6 +20,7 @@ from starlette.websockets import WebSocket
 from services.runtime.auth import NOT_AUTHORISED, token_matches
 from services.runtime.endpoint import TopicEndpoint
 from services.runtime.limits import BodySizeLimit
+from services.runtime.origin import SameOriginOnly
 from services.runtime.outbox import Outbox
 from services.runtime.service import Service, ServiceHandlerError
 from services.runtime.stream import (
@@ -53,6 +54,7 @@ class NodeApp:
             redoc_url=None,
         )
         self.fastapi.add_middleware(BodySizeLimit, max_bytes=node.settings.max_message_bytes)
+        self.fastapi.add_middleware(SameOriginOnly)
         self.fastapi.add_exception_handler(RequestValidationError, request_validation_handler)
         self.fastapi.add_api_route("/health", self._health, methods=["GET"], tags=["node"], summary="Liveness")
 

@@ -71,6 +71,9 @@ def bad_payloads(default: dict[str, Any]) -> dict[str, bytes]:
         path, _ = floats[0]
         cases["NaN"] = json.dumps(_replaced(default, path, math.nan)).encode()
         cases["Infinity"] = json.dumps(_replaced(default, path, math.inf)).encode()
+        # pydantic's lax mode would coerce these two: the JSON schema says number, so must we
+        cases["number as a string"] = json.dumps(_replaced(default, path, "1.5")).encode()
+        cases["boolean for a number"] = json.dumps(_replaced(default, path, True)).encode()
     return cases
 
 

@@ -21,7 +21,7 @@ from collections.abc import AsyncIterator
 import httpx
 import pytest
 from websockets.asyncio.client import connect
-from websockets.exceptions import ConnectionClosed
+from websockets.exceptions import ConnectionClosed, InvalidStatus
 
 import services.runtime.auth as auth
 from services.core.settings import CoreSettings
@@ -343,3 +343,33 @@ async def test_no_cors_anywhere(tokened) -> None:
                     )
     for app in (core.app, node._app.fastapi):
         assert not any("CORS" in m.cls.__name__ for m in app.user_middleware)
+
+
+# -- other web sites ------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("via_core", [False, True], ids=["direct", "gateway"])
+async def test_pages_of_other_sites_cannot_call_publish_or_stream(tokened, via_core: bool) -> None:
+    """A page on another site can send a 'simple' POST without preflight, and open WebSockets
+    (which have no CORS): both are refused. The same page served by the core works."""
+    core, node = tokened
+    base = core.url if via_core else node.url
+    bearer = _auth("bearer")[0]
+    async with httpx.AsyncClient() as http:
+        for origin in ("http://evil.example", "null", "http://127.0.0.1:1"):
+            forged = await http.post(
+                base + "/guarded/poke", content=b"", timeout=5,
+                headers={"Origin": origin, "Content-Type": "text/plain", **bearer},
+            )
+            assert forged.status_code == 403 and "cross-origin" in forged.json()["detail"], origin
+        assert node.calls == 0
+        own = await http.post(base + "/guarded/poke", headers={"Origin": base, **bearer}, timeout=5)
+        assert own.status_code == 200 and node.calls == 1
+    for topic in ("/guarded/echo", "/guarded/cmd_vel"):
+        with pytest.raises(InvalidStatus) as refused:
+            async with connect(stream_url(base, topic, token=TOKEN), origin="http://evil.example"):
+                pass
+        assert refused.value.response.status_code == 403
+    async with connect(stream_url(base, "/guarded/cmd_vel", token=TOKEN), origin=base) as websocket:
+        await websocket.send(json.dumps({"linear": {"x": 5.0}}))
+        await wait_until(lambda: any(t.linear.x == 5.0 for t in node.received), what="a same-origin publish")
