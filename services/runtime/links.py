@@ -78,10 +78,6 @@ class PublisherLink:
                     async for frame in websocket:
                         if isinstance(frame, str):
                             on_frame(frame)
-                        # One socket read can hold hundreds of frames, which `async for` hands
-                        # over without suspending: yield so subscriptions drain each frame
-                        # before the next, or a burst overflows queues they keep up with.
-                        await asyncio.sleep(0)
             except (OSError, TimeoutError, InvalidHandshake, WebSocketException) as error:
                 if isinstance(error, InvalidURI):
                     logger.error("cannot subscribe to %s at %s: %s", self.topic, self.url, error)

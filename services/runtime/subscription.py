@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import asyncio
+import inspect
 import logging
+import time
 from collections import deque
-from collections.abc import Callable
+from collections.abc import Awaitable, Callable
 from typing import Any
 
 from services.runtime.callbacks import call_user
@@ -13,12 +15,21 @@ from shared_models import Message
 
 __all__ = ["Subscription"]
 
+# A plain callback that takes less than this on average keeps up with any burst a socket hands
+# over (one read holds hundreds of frames): when its queue is full, the oldest message goes to
+# the callback at once instead of being dropped. Slower callbacks keep ROS's drop-oldest, which
+# keeps them on the newest messages.
+_QUICK_CALLBACK_S = 0.001
+_MEAN_WEIGHT = 0.1  # of the newest duration in the running mean
+
 
 class Subscription:
     """Calls ``callback(msg)`` for each message on a topic, in order, one at a time.
 
     Messages wait in a queue of ``queue_size``; when the callback falls behind, the oldest are
     dropped (ROS's queue_size), so a slow callback never slows the publisher or the socket.
+    A burst that only overflows the queue because it arrived in one piece is not "falling
+    behind": a plain (non-async) callback that is quick gets every message of it.
     """
 
     def __init__(
@@ -31,20 +42,64 @@ class Subscription:
         self._queue: deque[Message] = deque(maxlen=queue_size)
         self._ready = asyncio.Event()
         self.dropped = 0
+        self._what = f"subscription callback of {topic_name}"
+        self._logger = logging.getLogger("skydeck.runtime")  # the node's, once running
+        # Only plain callbacks are ever called from enqueue; one found returning awaitables
+        # (a lambda around a coroutine function) is treated as a coroutine callback from then on.
+        self._plain = not inspect.iscoroutinefunction(callback)
+        self._mean_call_s: float | None = None
+        self._calling = False
 
     def enqueue(self, msg: Message) -> None:
-        """Queue a message for the callback (on the receive path: never blocks)."""
-        if len(self._queue) == self._queue.maxlen:
-            self.dropped += 1
-        self._queue.append(msg)
+        """Queue a message for the callback (on the receive path: never blocks on a slow one)."""
+        queue = self._queue
+        if len(queue) == queue.maxlen:
+            if self._plain and not self._calling and (self._mean_call_s or 0.0) < _QUICK_CALLBACK_S:
+                pending = self._call_now(queue.popleft())
+                if pending is not None:
+                    asyncio.ensure_future(self._finish(pending))
+            else:
+                self.dropped += 1
+        queue.append(msg)
         self._ready.set()
 
     async def run(self, logger: logging.Logger) -> None:
         """Deliver queued messages to the callback until cancelled."""
+        self._logger = logger
         queue = self._queue
-        what = f"subscription callback of {self.topic_name}"
         while True:
             await self._ready.wait()
             self._ready.clear()
             while queue:
-                await call_user(self.callback, queue.popleft(), logger=logger, what=what)
+                msg = queue.popleft()
+                if not self._plain:
+                    await call_user(self.callback, msg, logger=logger, what=self._what)
+                    continue
+                pending = self._call_now(msg)
+                if pending is not None:
+                    await self._finish(pending)
+
+    async def _finish(self, pending: Awaitable[Any]) -> None:
+        try:
+            await pending
+        except Exception:
+            self._logger.exception("%s raised; the node keeps running", self._what)
+
+    def _call_now(self, msg: Message) -> Awaitable[Any] | None:
+        """Call the callback, timed; returns what it returned if that must still be awaited."""
+        self._calling = True
+        started = time.perf_counter()
+        try:
+            result = self.callback(msg)
+        except Exception:
+            self._logger.exception("%s raised; the node keeps running", self._what)
+            result = None
+        finally:
+            self._calling = False
+        elapsed = time.perf_counter() - started
+        mean = self._mean_call_s
+        self._mean_call_s = elapsed if mean is None else mean + (elapsed - mean) * _MEAN_WEIGHT
+        if inspect.isawaitable(result):
+            self._plain = False
+            return result
+        return None
