@@ -22,6 +22,7 @@ from pydantic import (
     ConfigDict,
     Field,
     PlainSerializer,
+    Strict,
     ValidationInfo,
     WithJsonSchema,
 )
@@ -53,17 +54,19 @@ class RosPrimitive:
     name: str
 
 
-Bool = Annotated[bool, RosPrimitive("bool")]
-Byte = Annotated[int, RosPrimitive("byte"), Field(ge=0, le=0xFF)]
-UInt8 = Annotated[int, RosPrimitive("uint8"), Field(ge=0, le=0xFF)]
-Int8 = Annotated[int, RosPrimitive("int8"), Field(ge=-(2**7), le=2**7 - 1)]
-UInt16 = Annotated[int, RosPrimitive("uint16"), Field(ge=0, le=0xFFFF)]
-Int32 = Annotated[int, RosPrimitive("int32"), Field(ge=-(2**31), le=2**31 - 1)]
-UInt32 = Annotated[int, RosPrimitive("uint32"), Field(ge=0, le=2**32 - 1)]
-Int64 = Annotated[int, RosPrimitive("int64"), Field(ge=-(2**63), le=2**63 - 1)]
-Float32 = Annotated[float, RosPrimitive("float32")]
-Float64 = Annotated[float, RosPrimitive("float64")]
-String = Annotated[str, RosPrimitive("string")]
+# Strict: JSON `true` is not the number 1 and "3" is not the integer 3 (lax pydantic would
+# coerce both); an integer is still a valid float, and nested messages still take dicts.
+Bool = Annotated[bool, Strict(), RosPrimitive("bool")]
+Byte = Annotated[int, Strict(), RosPrimitive("byte"), Field(ge=0, le=0xFF)]
+UInt8 = Annotated[int, Strict(), RosPrimitive("uint8"), Field(ge=0, le=0xFF)]
+Int8 = Annotated[int, Strict(), RosPrimitive("int8"), Field(ge=-(2**7), le=2**7 - 1)]
+UInt16 = Annotated[int, Strict(), RosPrimitive("uint16"), Field(ge=0, le=0xFFFF)]
+Int32 = Annotated[int, Strict(), RosPrimitive("int32"), Field(ge=-(2**31), le=2**31 - 1)]
+UInt32 = Annotated[int, Strict(), RosPrimitive("uint32"), Field(ge=0, le=2**32 - 1)]
+Int64 = Annotated[int, Strict(), RosPrimitive("int64"), Field(ge=-(2**63), le=2**63 - 1)]
+Float32 = Annotated[float, Strict(), RosPrimitive("float32")]
+Float64 = Annotated[float, Strict(), RosPrimitive("float64")]
+String = Annotated[str, Strict(), RosPrimitive("string")]
 
 
 def _bytes_from(value: Any, info: ValidationInfo) -> Any:
