@@ -6,7 +6,6 @@ import argparse
 import math
 
 from services.cli.errors import CliError
-from shared_models import InvalidNameError, resolve_name
 
 __all__ = ["positive_float", "positive_int", "ros_name"]
 
@@ -35,6 +34,11 @@ def positive_float(text: str) -> float:
 
 def ros_name(text: str) -> str:
     """A topic or service name as the user typed it, resolved ("my_point" -> "/my_point")."""
+    from shared_models import (  # loads every message type: only when used
+        InvalidNameError,
+        resolve_name,
+    )
+
     try:
         return resolve_name(text)
     except InvalidNameError as error:

@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 import os
-from typing import Any
-
-import httpx
+from typing import TYPE_CHECKING, Any
 
 from services.cli.errors import CliError
 from services.runtime.settings import DEFAULT_CORE_URL
+
+if TYPE_CHECKING:
+    import httpx
 
 __all__ = ["auth_headers", "core_url", "get_json", "post_json", "ws_url"]
 
@@ -41,6 +42,8 @@ def _unreachable(error: Exception) -> CliError:
 
 def get_json(path: str, *, missing: str | None = None) -> Any:
     """GET ``path`` on the core; a 404 raises CliError(``missing``) when given."""
+    import httpx  # here, not at the top: `skydeck launch` runs all session without it
+
     try:
         reply = httpx.get(core_url() + path, headers=auth_headers(), timeout=5.0)
     except httpx.HTTPError as error:
@@ -54,6 +57,8 @@ def get_json(path: str, *, missing: str | None = None) -> Any:
 
 def post_json(path: str, body: Any, *, timeout_s: float) -> httpx.Response:
     """POST ``body`` as JSON to ``path`` on the core and return the reply, whatever its status."""
+    import httpx
+
     try:
         return httpx.post(core_url() + path, json=body, headers=auth_headers(), timeout=timeout_s)
     except httpx.TimeoutException:

@@ -6,13 +6,6 @@ import argparse
 
 from services.cli.errors import CliError
 from services.cli.formatting import to_yaml
-from shared_models import (
-    Message,
-    UnknownInterfaceError,
-    get_interface,
-    interface_names,
-    interface_text,
-)
 
 __all__ = ["add_parser"]
 
@@ -33,7 +26,13 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.set_defaults(func=_proto)
 
 
+# shared_models is imported by each verb, not at the top: every `skydeck` command builds this
+# parser, and most never need the message types.
+
+
 def _lookup(name: str):  # type: ignore[no-untyped-def]
+    from shared_models import UnknownInterfaceError, get_interface
+
     try:
         return get_interface(name)
     except UnknownInterfaceError as error:
@@ -41,6 +40,8 @@ def _lookup(name: str):  # type: ignore[no-untyped-def]
 
 
 def _list(args: argparse.Namespace) -> int:
+    from shared_models import interface_names
+
     kind = "msg" if args.only_msgs else "srv" if args.only_srvs else None
     for name in interface_names(kind):
         print(name)
@@ -48,11 +49,15 @@ def _list(args: argparse.Namespace) -> int:
 
 
 def _show(args: argparse.Namespace) -> int:
+    from shared_models import interface_text
+
     print(interface_text(_lookup(args.type)))
     return 0
 
 
 def _proto(args: argparse.Namespace) -> int:
+    from shared_models import Message
+
     cls = _lookup(args.type)
     if not issubclass(cls, Message):
         cls = cls.Request

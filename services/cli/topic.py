@@ -9,7 +9,6 @@ import math
 import time
 from collections import deque
 
-from pydantic import ValidationError
 from websockets.asyncio.client import connect
 from websockets.exceptions import ConnectionClosed, InvalidHandshake, InvalidStatus
 
@@ -17,12 +16,6 @@ from services.cli.arguments import positive_float, positive_int, ros_name
 from services.cli.core_client import auth_headers, core_url, get_json, ws_url
 from services.cli.errors import CliError
 from services.cli.formatting import parse_data, to_yaml
-from services.runtime.stream import describe_validation_error
-from shared_models import (
-    Message,
-    UnknownInterfaceError,
-    get_interface,
-)
 
 __all__ = ["add_parser"]
 
@@ -181,6 +174,12 @@ def _print_rate(arrivals: deque[float]) -> None:
 
 
 def _pub(args: argparse.Namespace) -> int:
+    # The message types and the validation, here and not at the top: see cli/interface.py.
+    from pydantic import ValidationError
+
+    from services.runtime.stream import describe_validation_error
+    from shared_models import Message, UnknownInterfaceError, get_interface
+
     name = ros_name(args.topic)
     try:
         msg_type = get_interface(args.type)

@@ -15,7 +15,6 @@ from collections.abc import AsyncIterator
 from pathlib import Path
 from typing import Any
 
-import httpx
 from fastapi import FastAPI, Request, WebSocket
 from fastapi.openapi.docs import get_swagger_ui_html
 from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, RedirectResponse, Response
@@ -29,6 +28,7 @@ from services.core.registry import Registry
 from services.core.relay import GATEWAY_PATH, Relays
 from services.core.sessions import serve_session
 from services.core.settings import CoreSettings
+from services.runtime.http_client import HttpClient
 from services.runtime.limits import BodySizeLimit
 from services.runtime.origin import SameOriginOnly
 
@@ -47,15 +47,16 @@ def create_app(settings: CoreSettings | None = None) -> FastAPI:
 
     @contextlib.asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
-        async with httpx.AsyncClient() as http:
-            relays = Relays(registry, settings, gateway_url)
-            app.state.http = http
-            app.state.relays = relays
-            app.state.gateway = Gateway(registry, relays, settings, http)
-            try:
-                yield
-            finally:
-                relays.close()
+        http = HttpClient()
+        relays = Relays(registry, settings, gateway_url)
+        app.state.http = http
+        app.state.relays = relays
+        app.state.gateway = Gateway(registry, relays, settings, http)
+        try:
+            yield
+        finally:
+            relays.close()
+            await http.aclose()
 
     app = FastAPI(
         title="Skydeck",

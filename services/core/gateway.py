@@ -8,7 +8,6 @@
 
 from __future__ import annotations
 
-import httpx
 from fastapi.responses import JSONResponse, Response
 from starlette.requests import Request
 from starlette.websockets import WebSocket
@@ -17,6 +16,7 @@ from services.core.registry import Registry
 from services.core.relay import GATEWAY_NODE, Relays
 from services.core.settings import CoreSettings
 from services.runtime.auth import NOT_AUTHORISED, presented_token, token_matches
+from services.runtime.http_client import HttpClient, HttpError, HttpTimeout
 from services.runtime.outbox import Outbox
 from services.runtime.stream import (
     CLOSE_BAD_OPTION,
@@ -46,7 +46,7 @@ def _error(status_code: int, detail: str) -> JSONResponse:
 class Gateway:
     """Routes names to nodes for HTTP and WebSocket clients of the core."""
 
-    def __init__(self, registry: Registry, relays: Relays, settings: CoreSettings, http: httpx.AsyncClient) -> None:
+    def __init__(self, registry: Registry, relays: Relays, settings: CoreSettings, http: HttpClient) -> None:
         self._registry = registry
         self._relays = relays
         self._settings = settings
@@ -82,19 +82,21 @@ class Gateway:
             headers["authorization"] = f"Bearer {token}"  # also when it came as ?token= (a browser)
         try:
             reply = await self._http.post(
-                url, content=await request.body(), headers=headers, timeout=self._settings.gateway_timeout_s
+                url, await request.body(), headers=headers, timeout_s=self._settings.gateway_timeout_s
             )
-        except httpx.TimeoutException:
+        except ValueError:  # a ?token= with a line break: never put it into a header
+            return _error(400, "the token holds characters a token cannot have")
+        except HttpTimeout:
             return _error(
                 504,
                 f"{name} on node {node} did not answer within {self._settings.gateway_timeout_s:g} s: "
                 f"is its handler stuck? see `skydeck node info {node}`",
             )
-        except httpx.TransportError:
+        except HttpError:
             return _error(
                 503, f"node {node} hosting {name} is not reachable at {url}: is it running? see `skydeck node list`"
             )
-        return Response(reply.content, status_code=reply.status_code, media_type=reply.headers.get("content-type"))
+        return Response(reply.body, status_code=reply.status, media_type=reply.headers.get("content-type"))
 
     async def _latest(self, name: str) -> Response:
         publication = self._relays.publications.get(name)
@@ -103,11 +105,11 @@ class Gateway:
         publishers = [p for p in self._registry.publishers(name) if p.node != GATEWAY_NODE]
         for publisher in publishers:
             try:
-                reply = await self._http.get(publisher.url.rstrip("/") + name, timeout=2.0)
-            except httpx.HTTPError:
+                reply = await self._http.get(publisher.url.rstrip("/") + name, timeout_s=2.0)
+            except HttpError:
                 continue
-            if reply.status_code == 200:
-                return Response(reply.content, media_type="application/json")
+            if reply.status == 200:
+                return Response(reply.body, media_type="application/json")
         if publishers:
             return _error(404, f"no message on {name} yet")
         if self._registry.service(name) is not None:

@@ -7,10 +7,9 @@ import asyncio
 import copy
 from typing import Any
 
-import httpx
-
 from services.core.registry import NodeRecord, Registry
 from services.core.relay import GATEWAY_NODE
+from services.runtime.http_client import HttpClient, HttpError
 
 __all__ = ["aggregate_openapi"]
 
@@ -21,7 +20,7 @@ _GATEWAY_RESPONSES = {
 }
 
 
-async def aggregate_openapi(core_schema: dict[str, Any], registry: Registry, http: httpx.AsyncClient) -> dict[str, Any]:
+async def aggregate_openapi(core_schema: dict[str, Any], registry: Registry, http: HttpClient) -> dict[str, Any]:
     """The core's schema extended with each live node's service and topic paths (tagged by node)."""
     schema = copy.deepcopy(core_schema)
     paths: dict[str, Any] = schema.setdefault("paths", {})
@@ -46,10 +45,11 @@ async def aggregate_openapi(core_schema: dict[str, Any], registry: Registry, htt
     return schema
 
 
-async def _fetch(http: httpx.AsyncClient, record: NodeRecord) -> dict[str, Any] | None:
+async def _fetch(http: HttpClient, record: NodeRecord) -> dict[str, Any] | None:
     try:
-        reply = await http.get(record.description.url.rstrip("/") + "/openapi.json", timeout=_FETCH_TIMEOUT_S)
-        reply.raise_for_status()
+        reply = await http.get(record.description.url.rstrip("/") + "/openapi.json", timeout_s=_FETCH_TIMEOUT_S)
+        if reply.status != 200:
+            return None
         return reply.json()  # type: ignore[no-any-return]
-    except (httpx.HTTPError, ValueError):
+    except (HttpError, ValueError):
         return None  # a node that cannot answer now is left out of this page, not an error

@@ -29,11 +29,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TextIO
 
-import httpx
-
 from services.launch.errors import LaunchError
 from services.launch.plan import LaunchOptions, NodePlan, core_url, default_command, plan_launch
 from services.launch.spec import LaunchSpec, default_launch_file, load_launch_file
+from services.runtime.http_client import HttpClient, HttpError
 
 __all__ = ["CommandFor", "NodeState", "NodeStatus", "Supervisor", "run_launch"]
 
@@ -187,7 +186,7 @@ class Supervisor:
         self._out = out
         self._stop_timeout_s = stop_timeout_s
         self._children = {plan.name: _Child(plan) for plan in self.plans}
-        self._http: httpx.AsyncClient | None = None
+        self._http: HttpClient | None = None
         self._started = False
         self._stopping = False
         self._stopped = False
@@ -211,7 +210,7 @@ class Supervisor:
             try:
                 self._start_idle.clear()
                 self._check_ports_free()
-                self._http = httpx.AsyncClient(timeout=_HEALTH_REQUEST_TIMEOUT_S, trust_env=False)
+                self._http = HttpClient()
                 self._announce()
                 for child in self._children.values():
                     if self._stopping:
@@ -397,9 +396,9 @@ class Supervisor:
                 return _Outcome.EXITED
             if self._stopping:
                 return _Outcome.STOPPING
-            with contextlib.suppress(httpx.HTTPError):
-                response = await self._http.get(url)
-                if response.status_code == 200:
+            with contextlib.suppress(HttpError):
+                response = await self._http.get(url, timeout_s=_HEALTH_REQUEST_TIMEOUT_S)
+                if response.status == 200:
                     return _Outcome.READY
             if time.monotonic() >= deadline:
                 return _Outcome.TIMEOUT

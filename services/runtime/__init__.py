@@ -9,27 +9,43 @@
             self.create_timer(0.1, self.run_loop)
 
     spin(SendMessageNode())
+
+The exports load lazily, so a process that needs only a light part (the launch supervisor's HTTP
+client, the CLI's settings) does not pay for FastAPI and uvicorn.
 """
 
-from services.runtime.client import Client
-from services.runtime.clock import Clock, ClockTime
-from services.runtime.errors import (
-    NodeError,
-    ServiceCallRejectedError,
-    ServiceError,
-    ServiceException,
-    ServiceTimeoutError,
-    ServiceUnavailableError,
-    SkydeckError,
-)
-from services.runtime.logger import NodeLogger
-from services.runtime.node import Node
-from services.runtime.publisher import Publisher
-from services.runtime.service import Service
-from services.runtime.settings import NodeSettings
-from services.runtime.spin import init, shutdown, spin
-from services.runtime.subscription import Subscription
-from services.runtime.timer import Timer
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from services.runtime.client import Client
+    from services.runtime.clock import (
+        Clock,
+        ClockTime,
+    )
+    from services.runtime.errors import (
+        NodeError,
+        ServiceCallRejectedError,
+        ServiceError,
+        ServiceException,
+        ServiceTimeoutError,
+        ServiceUnavailableError,
+        SkydeckError,
+    )
+    from services.runtime.executor import (
+        init,
+        shutdown,
+        spin,
+    )
+    from services.runtime.logger import NodeLogger
+    from services.runtime.node import Node
+    from services.runtime.publisher import Publisher
+    from services.runtime.service import Service
+    from services.runtime.settings import NodeSettings
+    from services.runtime.subscription import Subscription
+    from services.runtime.timer import Timer
 
 __all__ = [
     "Client",
@@ -53,3 +69,33 @@ __all__ = [
     "shutdown",
     "spin",
 ]
+
+_HOMES = {
+    "Client": "services.runtime.client",
+    "Clock": "services.runtime.clock",
+    "ClockTime": "services.runtime.clock",
+    "Node": "services.runtime.node",
+    "NodeError": "services.runtime.errors",
+    "NodeLogger": "services.runtime.logger",
+    "NodeSettings": "services.runtime.settings",
+    "Publisher": "services.runtime.publisher",
+    "Service": "services.runtime.service",
+    "ServiceCallRejectedError": "services.runtime.errors",
+    "ServiceError": "services.runtime.errors",
+    "ServiceException": "services.runtime.errors",
+    "ServiceTimeoutError": "services.runtime.errors",
+    "ServiceUnavailableError": "services.runtime.errors",
+    "SkydeckError": "services.runtime.errors",
+    "Subscription": "services.runtime.subscription",
+    "Timer": "services.runtime.timer",
+    "init": "services.runtime.executor",
+    "shutdown": "services.runtime.executor",
+    "spin": "services.runtime.executor",
+}
+
+
+def __getattr__(name: str) -> Any:
+    home = _HOMES.get(name)
+    if home is None:
+        raise AttributeError(f"module 'services.runtime' has no attribute {name!r}")
+    return getattr(importlib.import_module(home), name)

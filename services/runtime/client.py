@@ -10,13 +10,12 @@ import asyncio
 from collections.abc import Callable
 from typing import Generic, TypeVar
 
-import httpx
-
 from services.runtime.errors import (
     ServiceCallRejectedError,
     ServiceTimeoutError,
     ServiceUnavailableError,
 )
+from services.runtime.http_client import HttpClient, HttpError, HttpTimeout, HttpUnreachable
 from shared_models import Message, ServiceType
 
 __all__ = ["Client"]
@@ -34,7 +33,7 @@ class Client(Generic[R]):
         srv_type: type[ServiceType],
         name: str,
         *,
-        http: Callable[[], httpx.AsyncClient],
+        http: Callable[[], HttpClient],
         core_url: str,
         default_timeout_s: float,
     ) -> None:
@@ -61,31 +60,26 @@ class Client(Generic[R]):
         for attempt in range(2):
             node_url = self._node_url or await self._lookup()
             try:
-                reply = await self._http().post(
-                    node_url + self.srv_name,
-                    content=body,
-                    headers={"Content-Type": "application/json"},
-                    timeout=timeout_s,
-                )
-            except httpx.TimeoutException:
+                reply = await self._http().post(node_url + self.srv_name, body, timeout_s=timeout_s)
+            except HttpTimeout:
                 raise ServiceTimeoutError(
                     self.srv_name, f"{self.srv_name} did not answer within {timeout_s:g} s"
                 ) from None
-            except httpx.TransportError as error:
+            except HttpUnreachable as error:
                 self._node_url = None  # the node moved or died: ask the core again
                 if attempt == 0:
                     continue
                 raise ServiceUnavailableError(
                     self.srv_name, f"cannot reach the node hosting {self.srv_name} at {node_url}: {error}"
                 ) from None
-            if reply.status_code == 404 and attempt == 0:
+            if reply.status == 404 and attempt == 0:
                 self._node_url = None
                 continue
-            if reply.status_code != 200:
+            if reply.status != 200:
                 raise ServiceCallRejectedError(
-                    self.srv_name, f"{self.srv_name} refused the call ({reply.status_code}): {reply.text}", reply.status_code
+                    self.srv_name, f"{self.srv_name} refused the call ({reply.status}): {reply.text}", reply.status
                 )
-            return self.srv_type.Response.model_validate_json(reply.content)  # type: ignore[return-value]
+            return self.srv_type.Response.model_validate_json(reply.body)  # type: ignore[return-value]
         raise ServiceUnavailableError(self.srv_name, f"no node hosts {self.srv_name}")
 
     def call_async(self, request: Message | None = None, *, timeout_s: float | None = None) -> asyncio.Future[R]:
@@ -112,12 +106,12 @@ class Client(Generic[R]):
 
     async def _lookup(self) -> str:
         try:
-            reply = await self._http().get(f"{self._core_url}/api/services{self.srv_name}", timeout=2.0)
-        except httpx.HTTPError as error:
+            reply = await self._http().get(f"{self._core_url}/api/services{self.srv_name}", timeout_s=2.0)
+        except HttpError as error:
             raise ServiceUnavailableError(
                 self.srv_name, f"cannot ask the core at {self._core_url} where {self.srv_name} is: {error}"
             ) from None
-        if reply.status_code != 200:
+        if reply.status != 200:
             raise ServiceUnavailableError(
                 self.srv_name, f"no node hosts {self.srv_name}: see `skydeck service list`"
             )

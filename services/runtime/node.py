@@ -15,7 +15,6 @@ import socket
 from collections.abc import Callable, Coroutine
 from typing import Any, TypeVar
 
-import httpx
 import uvicorn
 from pydantic import ValidationError
 
@@ -24,6 +23,7 @@ from services.runtime.client import Client
 from services.runtime.clock import Clock
 from services.runtime.endpoint import TopicEndpoint
 from services.runtime.errors import NodeError
+from services.runtime.http_client import HttpClient
 from services.runtime.links import PublisherLink
 from services.runtime.logger import NodeLogger
 from services.runtime.protocol import Entity, NodeDescription, PublisherAddress
@@ -83,7 +83,7 @@ class Node:
         self._destroyed = False
         self._stopping: asyncio.Event | None = None
         self._session: CoreSession | None = None
-        self._http: httpx.AsyncClient | None = None
+        self._http: HttpClient | None = None
         self._rosout = self.create_publisher(Log, _ROSOUT, 100)
         self._logger = NodeLogger(self._name, self._stamp, self._rosout.publish, level=self.settings.log_level)
         if self.settings.use_sim_time:
@@ -326,7 +326,7 @@ class Node:
                 raise NodeError(f"{self._name} could not start serving on port {port}")
             await asyncio.sleep(0.005)
         self._running = True
-        self._http = httpx.AsyncClient(
+        self._http = HttpClient(
             headers={"Authorization": f"Bearer {self.settings.token}"} if self.settings.token else None
         )
         self._session = CoreSession(
@@ -371,7 +371,7 @@ class Node:
             await self.stop()
 
     @property
-    def http(self) -> httpx.AsyncClient:
+    def http(self) -> HttpClient:
         """The node's HTTP client (for service clients); only while running."""
         if self._http is None:
             raise NodeError(f"node {self._name} is not running: service calls need `spin(node)` first")

@@ -1,4 +1,4 @@
-"""Running nodes: ``spin(node)`` as in rclpy, with Ctrl-C and SIGTERM stopping it cleanly."""
+"""Running nodes (rclpy's executor): ``spin(node)``, with Ctrl-C and SIGTERM stopping it cleanly."""
 
 from __future__ import annotations
 

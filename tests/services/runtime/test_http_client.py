@@ -1,0 +1,236 @@
+"""The internal HTTP client against a real uvicorn server: keep-alive, replies of every shape,
+and each way a request can fail."""
+
+from __future__ import annotations
+
+import asyncio
+import socket
+from collections.abc import AsyncIterator
+
+import pytest
+import uvicorn
+from starlette.applications import Starlette
+from starlette.requests import Request
+from starlette.responses import JSONResponse, Response, StreamingResponse
+from starlette.routing import Route
+
+from services.runtime.http_client import (
+    MAX_REPLY_BYTES,
+    HttpClient,
+    HttpTimeout,
+    HttpUnreachable,
+)
+from tests.conftest import free_port
+
+pytestmark = pytest.mark.timeout(30)
+
+_peers: set[tuple[str, int]] = set()  # client addresses seen: one per connection used
+
+
+async def echo(request: Request) -> Response:
+    _peers.add(request.client and (request.client.host, request.client.port))  # type: ignore[arg-type]
+    return JSONResponse(
+        {
+            "method": request.method,
+            "path": request.url.path,
+            "query": request.url.query,
+            "body": (await request.body()).decode(),
+            "headers": {k: v for k, v in request.headers.items() if k in ("content-type", "authorization", "x-extra")},
+        },
+        status_code=int(request.query_params.get("status", "200")),
+    )
+
+
+async def slow(request: Request) -> Response:
+    await asyncio.sleep(float(request.query_params["s"]))
+    return JSONResponse({"slept": True})
+
+
+async def chunked(request: Request) -> Response:
+    async def parts() -> AsyncIterator[bytes]:
+        for part in (b"one ", b"two ", b"three"):
+            yield part
+
+    return StreamingResponse(parts(), media_type="text/plain")
+
+
+async def closing(request: Request) -> Response:
+    return Response(b"bye", headers={"Connection": "close"})
+
+
+async def huge(request: Request) -> Response:
+    async def parts() -> AsyncIterator[bytes]:
+        block = b"x" * (1024 * 1024)
+        for _ in range(MAX_REPLY_BYTES // len(block) + 2):
+            yield block
+
+    return StreamingResponse(parts())
+
+
+APP = Starlette(
+    routes=[
+        Route("/echo", echo, methods=["GET", "POST"]),
+        Route("/slow", slow),
+        Route("/chunked", chunked),
+        Route("/close", closing),
+        Route("/huge", huge),
+    ]
+)
+
+
+@pytest.fixture
+async def server() -> AsyncIterator[str]:
+    port = free_port()
+    config = uvicorn.Config(APP, host="127.0.0.1", port=port, log_level="warning", lifespan="off")
+    instance = uvicorn.Server(config)
+    task = asyncio.create_task(instance.serve())
+    while not instance.started:
+        assert not task.done(), "the test server did not start"
+        await asyncio.sleep(0.01)
+    _peers.clear()
+    yield f"http://127.0.0.1:{port}"
+    instance.should_exit = True
+    await task
+
+
+@pytest.fixture
+async def client() -> AsyncIterator[HttpClient]:
+    http = HttpClient(headers={"Authorization": "Bearer secret"})
+    yield http
+    await http.aclose()
+
+
+async def test_post_sends_body_path_query_and_headers(server: str, client: HttpClient) -> None:
+    reply = await client.post(f"{server}/echo?a=1", b'{"x": 1}', timeout_s=5, headers={"X-Extra": "yes"})
+    assert reply.status == 200
+    assert reply.headers["content-type"] == "application/json"
+    assert reply.json() == {
+        "method": "POST",
+        "path": "/echo",
+        "query": "a=1",
+        "body": '{"x": 1}',
+        "headers": {"content-type": "application/json", "authorization": "Bearer secret", "x-extra": "yes"},
+    }
+
+
+async def test_any_status_is_a_reply(server: str, client: HttpClient) -> None:
+    reply = await client.get(f"{server}/echo?status=422", timeout_s=5)
+    assert reply.status == 422
+    assert reply.json()["method"] == "GET"
+
+
+async def test_sequential_requests_share_one_connection(server: str, client: HttpClient) -> None:
+    for _ in range(20):
+        assert (await client.get(f"{server}/echo", timeout_s=5)).status == 200
+    assert len(_peers) == 1
+
+
+async def test_concurrent_requests_each_get_their_own_reply(server: str, client: HttpClient) -> None:
+    replies = await asyncio.gather(*(client.post(f"{server}/echo", str(i), timeout_s=5) for i in range(30)))
+    assert [reply.json()["body"] for reply in replies] == [str(i) for i in range(30)]
+
+
+async def test_chunked_reply_is_joined(server: str, client: HttpClient) -> None:
+    reply = await client.get(f"{server}/chunked", timeout_s=5)
+    assert reply.body == b"one two three"
+
+
+async def test_connection_close_reply_is_not_reused(server: str, client: HttpClient) -> None:
+    assert (await client.get(f"{server}/close", timeout_s=5)).body == b"bye"
+    assert (await client.get(f"{server}/echo", timeout_s=5)).status == 200
+    assert (await client.get(f"{server}/close", timeout_s=5)).body == b"bye"
+
+
+async def test_timeout_raises_and_the_client_keeps_working(server: str, client: HttpClient) -> None:
+    with pytest.raises(HttpTimeout, match="within 0.2 s"):
+        await client.get(f"{server}/slow?s=2", timeout_s=0.2)
+    assert (await client.get(f"{server}/echo", timeout_s=5)).status == 200
+
+
+async def test_nobody_listening_is_unreachable(client: HttpClient) -> None:
+    with pytest.raises(HttpUnreachable, match="cannot connect"):
+        await client.get(f"http://127.0.0.1:{free_port()}/echo", timeout_s=5)
+
+
+async def test_a_reply_larger_than_the_limit_is_refused(server: str, client: HttpClient) -> None:
+    with pytest.raises(HttpUnreachable, match="larger than"):
+        await client.get(f"{server}/huge", timeout_s=20)
+
+
+async def test_server_restart_between_calls_is_survived(client: HttpClient) -> None:
+    """A kept-alive connection to a server that went away is replaced, not reported."""
+    port = free_port()
+    for _ in range(2):
+        config = uvicorn.Config(APP, host="127.0.0.1", port=port, log_level="warning", lifespan="off")
+        instance = uvicorn.Server(config)
+        task = asyncio.create_task(instance.serve())
+        while not instance.started:
+            await asyncio.sleep(0.01)
+        assert (await client.get(f"http://127.0.0.1:{port}/echo", timeout_s=5)).status == 200
+        instance.should_exit = True
+        await task
+
+
+async def test_garbage_from_the_server_is_a_broken_connection(client: HttpClient) -> None:
+    async def answer(reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        await reader.readuntil(b"\r\n\r\n")
+        writer.write(b"NOT HTTP AT ALL\r\n\r\n")
+        await writer.drain()
+
+    listener = await asyncio.start_server(answer, "127.0.0.1", 0, family=socket.AF_INET)
+    port = listener.sockets[0].getsockname()[1]
+    async with listener:
+        with pytest.raises(HttpUnreachable, match="malformed reply"):
+            await client.get(f"http://127.0.0.1:{port}/", timeout_s=5)
+
+
+async def test_header_with_a_line_break_is_refused(server: str, client: HttpClient) -> None:
+    with pytest.raises(ValueError, match="line break"):
+        await client.post(f"{server}/echo", b"{}", timeout_s=5, headers={"Authorization": "Bearer x\r\nX-Evil: 1"})
+
+
+async def test_only_plain_http_urls(client: HttpClient) -> None:
+    with pytest.raises(HttpUnreachable, match="only http://"):
+        await client.get("https://example.org/", timeout_s=5)
+
+
+async def test_kept_alive_connection_dropped_by_the_server_is_retried_once_on_a_new_one(client: HttpClient) -> None:
+    """The race with a server's keep-alive timeout: it closes the idle connection just as the
+    next request arrives, unanswered. The request goes again on a new connection."""
+    requests_per_connection: list[int] = []
+
+    async def answer_first_then_hang_up(reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        requests_per_connection.append(0)
+        while True:
+            await reader.readuntil(b"\r\n\r\n")
+            requests_per_connection[-1] += 1
+            if requests_per_connection[-1] > 1:
+                writer.close()
+                return
+            writer.write(b"HTTP/1.1 200 OK\r\nContent-Length: 2\r\n\r\nok")
+            await writer.drain()
+
+    listener = await asyncio.start_server(answer_first_then_hang_up, "127.0.0.1", 0, family=socket.AF_INET)
+    url = f"http://127.0.0.1:{listener.sockets[0].getsockname()[1]}/"
+    async with listener:
+        assert (await client.get(url, timeout_s=5)).body == b"ok"
+        assert (await client.get(url, timeout_s=5)).body == b"ok"
+    assert requests_per_connection == [2, 1]
+
+
+async def test_a_fresh_connection_that_breaks_is_not_retried(client: HttpClient) -> None:
+    """Only a reused connection may have been dropped while idle; a new one that breaks means the
+    server may have seen the request, so it is not sent twice."""
+    seen = 0
+
+    async def hang_up(reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        nonlocal seen
+        await reader.readuntil(b"\r\n\r\n")
+        seen += 1
+        writer.close()
+
+    listener = await asyncio.start_server(hang_up, "127.0.0.1", 0, family=socket.AF_INET)
+    async with listener:
+        with pytest.raises(HttpUnreachable, match="closed the connection"):
+            await client.post(f"http://127.0.0.1:{listener.sockets[0].getsockname()[1]}/", b"{}", timeout_s=5)
+    assert seen == 1
