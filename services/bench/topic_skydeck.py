@@ -6,7 +6,7 @@
 Both are ordinary nodes (``create_publisher`` / ``create_subscription``) registered with the
 core at ``SKYDECK_CORE_URL``; the subscriber links to the publisher the way every node does.
 The publisher waits for ``--subscribers`` readers, then publishes as fast as it can
-(throughput: it yields to the event loop after each message, as a node's own loop would) or at
+(throughput: it yields to the event loop after every ``BURST`` messages, as the bare publisher does) or at
 ``--rate`` with the send time in ``header.stamp`` (latency).
 """
 
@@ -18,7 +18,7 @@ import inspect
 import time
 from collections.abc import Callable
 
-from services.bench.payload import TOPIC, pose_message, stamp_now
+from services.bench.payload import BURST, TOPIC, pose_message, stamp_now
 from services.bench.sink import Sink, emit, topic_arguments, wait_for_stop_async
 from services.runtime import Node, NodeSettings
 from shared_models.geometry_msgs import PoseStamped
@@ -66,7 +66,8 @@ async def publisher(args: argparse.Namespace) -> None:
             while time.monotonic() < end:
                 publish(msg)
                 sent += 1
-                await asyncio.sleep(0)
+                if sent % BURST == 0:
+                    await asyncio.sleep(0)
         else:
             stamp = msg.header.stamp
 

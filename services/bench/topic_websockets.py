@@ -20,7 +20,7 @@ from websockets.asyncio.client import connect
 from websockets.asyncio.server import ServerConnection, serve
 from websockets.exceptions import ConnectionClosed
 
-from services.bench.payload import frame_template, stamped_frame
+from services.bench.payload import BURST, frame_template, stamped_frame
 from services.bench.sink import Sink, emit, topic_arguments, wait_for_stop_async
 from services.bench.topic_skydeck import paced
 
@@ -42,6 +42,8 @@ async def publisher(args: argparse.Namespace) -> None:
                 while time.monotonic() < end:
                     sent += 1
                     await websocket.send(template % (sent, 0, 0))
+                    if sent % BURST == 0:
+                        await asyncio.sleep(0)
             else:
                 count = 0
 

@@ -47,4 +47,4 @@ class TopicEndpoint:
         self.latest_msg = msg
         self.latest_frame = frame
         for subscription in self.subscriptions:
-            subscription.enqueue(msg)
+            subscription.receive(msg)

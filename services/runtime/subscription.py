@@ -50,6 +50,21 @@ class Subscription:
         self._mean_call_s: float | None = None
         self._calling = False
 
+    def receive(self, msg: Message) -> None:
+        """A message from a socket: a quick plain callback with nothing waiting is called at once.
+
+        That saves the hand-over to the delivery task (a task switch per message, ~15% of a
+        receive) and keeps the order. Only for messages from sockets: a local publish never
+        runs a callback inside ``publish()``, where two callbacks publishing to each other
+        would recurse.
+        """
+        if not self._queue and self._plain and not self._calling and (self._mean_call_s or 0.0) < _QUICK_CALLBACK_S:
+            pending = self._call_now(msg)
+            if pending is not None:
+                asyncio.ensure_future(self._finish(pending))
+            return
+        self.enqueue(msg)
+
     def enqueue(self, msg: Message) -> None:
         """Queue a message for the callback (on the receive path: never blocks on a slow one)."""
         queue = self._queue
@@ -99,7 +114,7 @@ class Subscription:
         elapsed = time.perf_counter() - started
         mean = self._mean_call_s
         self._mean_call_s = elapsed if mean is None else mean + (elapsed - mean) * _MEAN_WEIGHT
-        if inspect.isawaitable(result):
+        if result is not None and inspect.isawaitable(result):
             self._plain = False
             return result
         return None
