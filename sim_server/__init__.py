@@ -11,8 +11,7 @@ limits) without loading PyBullet.
 
 from __future__ import annotations
 
-import importlib
-from typing import Any
+from services.runtime.lazy import lazy_exports
 
 __all__ = [
     "ControlMode",
@@ -33,8 +32,4 @@ _HOMES = {
 }
 
 
-def __getattr__(name: str) -> Any:
-    home = _HOMES.get(name)
-    if home is None:
-        raise AttributeError(f"module 'sim_server' has no attribute {name!r}")
-    return getattr(importlib.import_module(home), name)
+__getattr__ = lazy_exports(__name__, _HOMES)

@@ -16,8 +16,9 @@ client, the CLI's settings) does not pay for FastAPI and uvicorn.
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from services.runtime.lazy import lazy_exports
 
 if TYPE_CHECKING:
     from services.runtime.client import Client
@@ -94,8 +95,4 @@ _HOMES = {
 }
 
 
-def __getattr__(name: str) -> Any:
-    home = _HOMES.get(name)
-    if home is None:
-        raise AttributeError(f"module 'services.runtime' has no attribute {name!r}")
-    return getattr(importlib.import_module(home), name)
+__getattr__ = lazy_exports(__name__, _HOMES)
