@@ -153,8 +153,7 @@ def test_odd_names_are_refused_with_the_bad_part_shown(workshop: Workshop, name:
         assert reply.status_code == 404, (method, name, reply.text)
         assert bad_part in reply.json()["detail"] and "invalid name" in reply.json()["detail"], reply.text
     ws_url = workshop.core_url.replace("http://", "ws://") + path
-    with connect(ws_url, open_timeout=5) as websocket:
-        with pytest.raises(ConnectionClosed) as closed:
-            websocket.recv(timeout=5)
+    with connect(ws_url, open_timeout=5) as websocket, pytest.raises(ConnectionClosed) as closed:
+        websocket.recv(timeout=5)
     assert closed.value.rcvd is not None
     assert closed.value.rcvd.code == 1008 and bad_part in closed.value.rcvd.reason
