@@ -8,7 +8,8 @@ Two inputs reach the drone, as in the workshop's fake MAVROS:
 
 When the setpoint stream stops for STREAM_TIMEOUT_S (sim time) the offboard failsafe engages:
 the drone goes back to, and holds, the position it had when the last setpoint arrived (where
-the stream stopped). With neither input it simply holds. Bad input raises
+the stream stopped); a drone standing on the ground by then (landed) stays where it stands, with
+its motors off. With neither input it simply holds. Bad input raises
 :class:`InvalidCommand` before anything changes, so nothing non-finite reaches the physics.
 """
 
@@ -156,7 +157,12 @@ class CommandArbiter:
             ref.vx = ref.vy = ref.vz = ref.yaw_rate = 0.0
             return ref
         if self.mode is ControlMode.OFFBOARD:  # the stream has stopped: failsafe
-            ref.x, ref.y, ref.z, ref.yaw = self.failsafe_hold
+            if pz <= ON_GROUND_Z_M:
+                # On the ground (landed): it stays where it stands, motors off. The last setpoint
+                # of a landing arrived a little above the ground; holding there lifted it again.
+                ref.x, ref.y, ref.z, ref.yaw = px, py, pz, yaw
+            else:
+                ref.x, ref.y, ref.z, ref.yaw = self.failsafe_hold
         if now_s - self.cmd_vel_time_s <= STREAM_TIMEOUT_S:
             vx, vy, vz, yaw_rate = self.cmd_vel
         else:

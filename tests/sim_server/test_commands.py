@@ -13,7 +13,13 @@ from sim_server.commands import (
     check_cmd_vel,
     check_setpoint,
 )
-from sim_server.limits import MAX_SPEED_XY, MAX_SPEED_Z, MAX_YAW_RATE, STREAM_TIMEOUT_S
+from sim_server.limits import (
+    MAX_SPEED_XY,
+    MAX_SPEED_Z,
+    MAX_YAW_RATE,
+    ON_GROUND_Z_M,
+    STREAM_TIMEOUT_S,
+)
 
 DT = 1.0 / 60.0
 
@@ -83,6 +89,20 @@ def test_failsafe_holds_where_the_drone_was_when_the_stream_stopped() -> None:
     assert (ref.x, ref.y, ref.z, ref.yaw) == (1.5, 1.6, 2.2, 0.3)
     ref = arbiter.update(5.0, DT, 2.0, 2.0, 2.5, 0.0)  # holds the same point later on
     assert (ref.x, ref.y, ref.z) == (1.5, 1.6, 2.2)
+
+
+def test_failsafe_keeps_a_drone_on_the_ground_there() -> None:
+    arbiter = CommandArbiter(0.0, 0.0, 3.0, 0.0)
+    # The landing setpoint's last frame arrived just above the ground; the drone touched down.
+    arbiter.set_setpoint(1.0, 1.0, 2.0, 0.0, 0.0, drone_pose=(1.0, 2.0, 0.12, 0.0))
+    arbiter.update(1.0 + STREAM_TIMEOUT_S, DT, 1.0, 2.0, 0.07, 0.0)
+    assert arbiter.mode is ControlMode.OFFBOARD
+    ref = arbiter.update(1.0 + STREAM_TIMEOUT_S + DT, DT, 1.01, 2.02, 0.06, 0.1)
+    assert arbiter.mode is ControlMode.HOLD
+    assert (ref.x, ref.y, ref.z, ref.yaw) == (1.01, 2.02, 0.06, 0.1)  # where it stands
+    assert ref.z <= ON_GROUND_Z_M and ref.vz == 0.0  # so the motors stay off
+    ref = arbiter.update(5.0, DT, 1.01, 2.02, 0.06, 0.1)
+    assert ref.z == 0.06
 
 
 def test_cmd_vel_moves_the_target_and_stale_cmd_vel_counts_as_zero() -> None:

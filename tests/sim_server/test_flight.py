@@ -15,7 +15,7 @@ from sim_server.limits import (
     STREAM_TIMEOUT_S,
 )
 from sim_server.world import World
-from tests.sim_server.flight import idle, stream_cmd_vel, stream_setpoint
+from tests.sim_server.flight import STEPS_PER_SETPOINT, idle, stream_cmd_vel, stream_setpoint
 
 SPEED_TOLERANCE = 0.3  # m/s over the limit, for the velocity loop's own overshoot
 
@@ -118,6 +118,23 @@ def test_lands_and_stops_the_motors(hovering: World) -> None:
     state = hovering.drone_state()
     assert state.landed and not state.armed and state.on_ground
     assert log.max_speed_z <= MAX_SPEED_Z + SPEED_TOLERANCE
+
+
+def test_a_landed_drone_stays_down_when_the_stream_stops(hovering: World) -> None:
+    # As the control node does: send the landing setpoint until the drone is on the ground, then
+    # stop. The last setpoint arrived a little above ON_GROUND_Z_M; the failsafe that takes over
+    # must not lift the drone back there (it used to hover at 0.11 m, armed, for good).
+    for _ in range(30 * 10):
+        hovering.set_setpoint(0.0, 0.0, 0.0)
+        hovering.step(STEPS_PER_SETPOINT)
+        if hovering.drone_pose()[0][2] <= ON_GROUND_Z_M:
+            break
+    assert hovering.on_ground
+    after = idle(hovering, seconds=3.0)
+    assert max(z for _, _, z in after.positions) <= ON_GROUND_Z_M
+    state = hovering.drone_state()
+    assert state.mode is ControlMode.HOLD
+    assert state.landed and not state.armed and state.on_ground
     # and takes off again from there
     again = stream_setpoint(hovering, (0.0, 0.0, 2.0), seconds=4.0)
     assert again.final[2] == pytest.approx(2.0, abs=0.15)
