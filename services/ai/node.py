@@ -3,6 +3,10 @@ shortest order it can find, land. Progress is saved per world, so a restarted AI
 
 One fly command per box, sent when the drone has reached the previous one (within 0.3 m
 horizontally): never spamming control. ``/ai/status`` reports every change and once a second.
+
+Control's services are called directly, but where they live is asked of the core (once, and again
+after control moved). When that cannot be answered (the core is restarting, or control has not
+registered again yet), the mission waits for the service and calls again instead of failing.
 """
 
 from __future__ import annotations
@@ -13,11 +17,13 @@ import contextlib
 import math
 import time
 from collections.abc import Callable
+from typing import TypeVar
 
 from services.ai.planner import plan_tour
 from services.ai.progress import ProgressStore, default_state_dir, world_key
-from services.runtime import Node, NodeSettings, ServiceError, spin
+from services.runtime import Client, Node, NodeSettings, ServiceError, ServiceUnavailableError, spin
 from services.runtime.settings import settings_with_default_port
+from shared_models import Message
 from shared_models.geometry_msgs import Point, Polygon, PoseStamped
 from shared_models.ros_workshop import AiStatus, ControlState, FlyCommand
 from shared_models.std_msgs import Header
@@ -33,6 +39,8 @@ HOME_XY_M = START_XY_M
 STATUS_PERIOD_S = 1.0
 STALE_POSE_S = 1.0
 _RETRY_S = 1.0
+# A service nobody could locate is looked up again after this pause (wait_for_service polls on).
+_UNAVAILABLE_PAUSE_S = 0.2
 # Boxes count as at rest (and their world key as final) when this many consecutive box messages
 # agree within the tolerance: falling boxes would give a plan, and a key, of a world in motion.
 SETTLED_MESSAGES = 3
@@ -40,6 +48,8 @@ SETTLED_TOLERANCE_M = 0.02
 # Control reporting another goal than the AI's for this long means it lost the command (it was
 # restarted): the command is sent again. Long enough for control's state to catch up with a call.
 CONTROL_FORGOT_S = 1.5
+
+R = TypeVar("R", bound=Message)
 
 
 class AiNode(Node):
@@ -136,7 +146,7 @@ class AiNode(Node):
         if position.z < TAKE_OFF_DONE_Z_M:
             await self.take_off.wait_for_service()
             if position.z <= 0.1:
-                response = await self.take_off.call(Trigger.Request())
+                response = await self._call(self.take_off, Trigger.Request())
                 if not response.success:
                     self.get_logger().warning("take-off refused: %s", response.message)
             self._update(state="taking_off", message="taking off")
@@ -160,12 +170,12 @@ class AiNode(Node):
         # Return to the start, which the world keeps clear of boxes, and land there.
         self._update(state="landing", target=-1, message="all boxes visited: returning to the start to land")
         await self._fly_to(HOME_XY_M)
-        await self.land.call(Trigger.Request())
+        await self._call(self.land, Trigger.Request())
         sent_s = time.monotonic()
         while (await self._fresh_position()).z > 0.1:
             if self._control_forgot(sent_s, lambda state: state.state in ("landing", "landed")):
                 self.get_logger().warning("control is not landing (was it restarted?): asking again")
-                await self.land.call(Trigger.Request())
+                await self._call(self.land, Trigger.Request())
                 sent_s = time.monotonic()
         self._update(state="done", message=f"visited {len(visited)} boxes")
 
@@ -192,11 +202,36 @@ class AiNode(Node):
 
     async def _send_fly(self, target: tuple[float, float]) -> None:
         while True:
-            response = await self.fly.call(FlyCommand.Request(x=target[0], y=target[1]))
+            response = await self._call(self.fly, FlyCommand.Request(x=target[0], y=target[1]))
             if response.success or response.message.startswith("Already flying"):
                 return
             self.get_logger().warning("fly refused: %s; retrying in %.0f s", response.message, _RETRY_S)
             await asyncio.sleep(_RETRY_S)
+
+    async def _call(self, client: Client[R], request: Message) -> R:
+        """``client.call(request)``; while nobody can say where the service is (the core is
+        restarting, or control has not registered again yet), wait for it and call again.
+
+        Only ServiceUnavailableError is waited out: a timeout or a refused body still ends the
+        mission. The calls the mission makes (take off, fly to a point, land) may be repeated.
+        """
+        waiting, held = False, ""
+        while True:
+            try:
+                response = await client.call(request)
+            except ServiceUnavailableError as error:
+                if not waiting:
+                    waiting = True
+                    held = self.status.message
+                    self.get_logger().warning("%s: waiting for %s", error, client.srv_name)
+                    self._update(message=f"waiting for {client.srv_name} ({error})")
+                await asyncio.sleep(_UNAVAILABLE_PAUSE_S)  # never a busy loop on a node that is gone
+                await client.wait_for_service()
+                continue
+            if waiting:
+                self.get_logger().info("%s is back", client.srv_name)
+                self._update(message=held)
+            return response
 
     def _control_forgot(self, sent_s: float, doing_it: Callable[[ControlState], bool]) -> bool:
         """Whether control's state has shown something else than the command sent at ``sent_s``

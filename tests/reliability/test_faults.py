@@ -88,13 +88,16 @@ async def _collect(url: str, topic: str, into: list[dict], **query: object) -> N
 
 
 async def _until(messages: list[dict], predicate: Callable[[dict], bool], timeout_s: float, what: str) -> dict:
-    async with asyncio.timeout(timeout_s):
-        while True:
-            for message in messages:
-                if predicate(message):
-                    return message
-            await asyncio.sleep(0.05)
-    raise AssertionError(what)  # pragma: no cover
+    try:
+        async with asyncio.timeout(timeout_s):
+            while True:
+                for message in messages:
+                    if predicate(message):
+                        return message
+                await asyncio.sleep(0.05)
+    except TimeoutError:
+        last = messages[-1] if messages else "none"
+        raise AssertionError(f"timed out after {timeout_s:g} s waiting for {what}; the last message: {last}") from None
 
 
 async def test_killed_control_and_perception_respawn_and_the_mission_completes(launch) -> None:
@@ -118,32 +121,44 @@ async def test_killed_core_respawns_streams_flow_meanwhile_and_nodes_register_ag
     with _explained(system):
         base = int(system.core_url.rsplit(":", 1)[1])
         sim_url, ai_url = f"http://127.0.0.1:{base + 1}", f"http://127.0.0.1:{base + 4}"
-        await system.messages("/ai/status", lambda m: len(m["visited"]) >= 1, 60)
         async with httpx.AsyncClient() as http:
             core_pid = (await http.get(system.core_url + "/health", timeout=5)).json()["pid"]
         # Read the AI's status from its own port throughout: it must keep moving while the core is gone.
         statuses: list[dict] = []
         reader = asyncio.create_task(_collect(ai_url, "/ai/status", statuses))
         try:
+            await _until(statuses, lambda m: len(m["visited"]) >= 1, 60, "the first box visited")
             mark = len(system.lines)
             os.kill(core_pid, signal.SIGKILL)
             await system.wait_for_line("[launch] core exited", timeout_s=20, after=mark)
-            # The core is gone (nothing answers on its port), yet the sim's pose streams straight to readers...
+            # The core is gone (nothing answers on its port)...
             with pytest.raises(httpx.ConnectError):
                 async with httpx.AsyncClient() as http:
                     await http.get(system.core_url + "/health", timeout=2)
-            async with connect(stream_url(sim_url, "/drone/pose")) as websocket:
-                poses = [json.loads(await asyncio.wait_for(websocket.recv(), 5)) for _ in range(10)]
-            assert len({p["header"]["stamp"]["nanosec"] + 10**9 * p["header"]["stamp"]["sec"] for p in poses}) == 10
-            outage_statuses = len(statuses)
-            await system.wait_for_line("[launch] core ready", timeout_s=30, after=mark)
-            # ...every node is back in the graph within a few seconds of the core's return...
-            await _wait_registered(system, NODES, timeout_s=5)
-            # ...and the mission, which went on meanwhile, completes with every box once.
+            # ...and stays gone: launch respawns it within a second, so the test holds its port
+            # (the respawns fail until the test lets go) for as long as the outage must last.
+            with _holding_port(base):
+                # The sim's pose streams straight to readers...
+                async with connect(stream_url(sim_url, "/drone/pose")) as websocket:
+                    poses = [json.loads(await asyncio.wait_for(websocket.recv(), 5)) for _ in range(10)]
+                assert len({p["header"]["stamp"]["nanosec"] + 10**9 * p["header"]["stamp"]["sec"] for p in poses}) == 10
+                # ...and the mission goes on: the AI visits the remaining boxes and, to land, needs
+                # /control/land, which it has never looked up. No core can say where it is now, so
+                # the AI says it waits for it (before the fix, the mission ended in "error" here).
+                waiting = await _until(
+                    statuses,
+                    lambda m: m["state"] == "error" or "waiting for /control/land" in m["message"],
+                    90,
+                    "the AI to wait for /control/land",
+                )
+                assert waiting["state"] == "landing", waiting
+            await system.wait_for_line("[launch] core ready", timeout_s=60, after=mark)
+            # ...every node registers again by itself once the core is back...
+            await _wait_registered(system, NODES, timeout_s=30)
+            # ...and the mission, which went on meanwhile, lands and completes with every box once.
             status = await _until(statuses, lambda m: m["state"] in ("done", "error"), 90, "the mission to end")
         finally:
             reader.cancel()
-        assert outage_statuses > 0
         _assert_every_box_once(status)
         assert len(status["visited"]) == 8
 

@@ -1,7 +1,8 @@
 """The pieces that let a mission survive a restarted neighbour, at unit level: timers on sim time
 survive a simulator restart (its clock starts again at zero), a restarted control takes over a
 drone that is in the air and reports a stale pose, and the AI plans only on boxes at rest,
-re-plans for a new world on /ai/start, and re-sends a goal that a restarted control forgot.
+re-plans for a new world on /ai/start, re-sends a goal that a restarted control forgot, and waits
+for a service nobody can locate while the core restarts.
 """
 
 from __future__ import annotations
@@ -10,10 +11,12 @@ import asyncio
 import logging
 import time
 
+import pytest
+
 from services.ai.node import CONTROL_FORGOT_S, AiNode
 from services.ai.progress import ProgressStore
 from services.control.node import FLIGHT_ALTITUDE_M, ControlNode
-from services.runtime import NodeSettings
+from services.runtime import NodeSettings, ServiceTimeoutError, ServiceUnavailableError
 from services.runtime.clock import Clock
 from services.runtime.timer import Timer
 from shared_models.builtin_interfaces import Time
@@ -119,3 +122,49 @@ def test_ai_notices_when_control_forgot_its_goal(tmp_path) -> None:
     ai.on_control_state(ControlState(state="flying", setpoint=Point(x=-1.0, y=2.0, z=3.0)))  # restarted
     assert ai._control_forgot(long_ago, there)
     assert not ai._control_forgot(time.monotonic(), there)  # just sent: control's state may lag
+
+
+async def test_ai_waits_for_a_service_nobody_can_locate_and_calls_again(tmp_path) -> None:
+    """The core is restarting (or control has not registered again) when the AI first needs
+    /control/land: the mission says it waits, and lands once the service can be located."""
+    ai = AiNode(NodeSettings(port=0), store=ProgressStore(tmp_path))
+    ai._update(message="returning to the start")
+    located = asyncio.Event()
+    calls: list[Trigger.Request] = []
+
+    async def call(request: Trigger.Request, *, timeout_s: float | None = None) -> Trigger.Response:
+        calls.append(request)
+        if not located.is_set():
+            raise ServiceUnavailableError("/control/land", "cannot ask the core where /control/land is")
+        return Trigger.Response(success=True, message="Landing.")
+
+    async def wait_for_service(timeout_s: float | None = None) -> bool:
+        await located.wait()
+        return True
+
+    ai.land.call = call  # type: ignore[method-assign]
+    ai.land.wait_for_service = wait_for_service  # type: ignore[method-assign]
+    landing = asyncio.create_task(ai._call(ai.land, Trigger.Request()))
+    try:
+        await wait_until(lambda: "waiting for /control/land" in ai.status.message, what="the AI to say it waits")
+        assert not landing.done() and len(calls) == 1
+        located.set()  # the core is back and control registered again
+        async with asyncio.timeout(10):
+            response = await landing
+    finally:
+        landing.cancel()
+    assert response.success and len(calls) == 2
+    assert ai.status.message == "returning to the start"
+
+
+async def test_ai_still_fails_on_a_service_that_does_not_answer(tmp_path) -> None:
+    """Only a service nobody can locate is waited for: a hung control still ends the mission."""
+    ai = AiNode(NodeSettings(port=0), store=ProgressStore(tmp_path))
+
+    async def call(request: Trigger.Request, *, timeout_s: float | None = None) -> Trigger.Response:
+        raise ServiceTimeoutError("/control/land", "/control/land did not answer within 5 s")
+
+    ai.land.call = call  # type: ignore[method-assign]
+    with pytest.raises(ServiceTimeoutError):
+        async with asyncio.timeout(10):
+            await ai._call(ai.land, Trigger.Request())
