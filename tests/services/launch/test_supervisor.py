@@ -29,6 +29,7 @@ from services.launch import (
     Supervisor,
     run_launch,
 )
+from tests.conftest import free_port_block
 
 pytestmark = pytest.mark.timeout(30)
 
@@ -78,29 +79,6 @@ NODE_PROGRAM = textwrap.dedent(
 
 
 # --- helpers --------------------------------------------------------------------------------
-
-
-def free_base_port(count: int) -> int:
-    """A base port with ``count`` consecutive ports free on loopback right now."""
-    for _ in range(100):
-        with socket.socket() as probe:
-            probe.bind(("127.0.0.1", 0))
-            base = probe.getsockname()[1]
-        if base + count > 65535:
-            continue
-        try:
-            sockets = []
-            for port in range(base, base + count):
-                sock = socket.socket()
-                sockets.append(sock)
-                sock.bind(("127.0.0.1", port))
-        except OSError:
-            continue
-        finally:
-            for sock in sockets:
-                sock.close()
-        return base
-    raise RuntimeError("no run of free ports found")
 
 
 def alive(pid: int) -> bool:
@@ -158,7 +136,7 @@ class Launch:
         command: CommandFor | None = None,
         **options: object,
     ) -> Supervisor:
-        base = free_base_port(max(n.port_offset for n in nodes) + 1)
+        base = free_port_block(max(n.port_offset for n in nodes) + 1)
         supervisor = Supervisor(
             LaunchSpec(nodes=nodes),
             LaunchOptions(base_port=base, **options),  # type: ignore[arg-type]
@@ -443,7 +421,7 @@ def test_a_signal_stops_everything_and_exits_0(
     runner.write_text(RUNNER)
     env = {**os.environ, "PYTHONPATH": str(REPO), "PYTHONUNBUFFERED": "1"}
     process = subprocess.Popen(
-        [sys.executable, str(runner), str(program), str(free_base_port(2)), str(tmp_path)],
+        [sys.executable, str(runner), str(program), str(free_port_block(2)), str(tmp_path)],
         stdout=subprocess.PIPE,
         stderr=subprocess.STDOUT,
         text=True,
