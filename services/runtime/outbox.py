@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import asyncio
 from collections import deque
+from collections.abc import Callable
 
 __all__ = ["Outbox"]
 
@@ -15,16 +16,21 @@ __all__ = ["Outbox"]
 class Outbox:
     """Frames waiting to be written to one connection, oldest dropped when full."""
 
-    __slots__ = ("_frames", "_ready", "dropped")
+    __slots__ = ("_frames", "_ready", "dropped", "send_now")
 
     def __init__(self, maxlen: int) -> None:
         self._frames: deque[str] = deque(maxlen=maxlen)
         self._ready = asyncio.Event()
         self.dropped = 0
+        # Set by the connection's writer while it is idle: sends a frame at once instead of
+        # waking the writer (True), or declines (False) and the frame is queued.
+        self.send_now: Callable[[str], bool] | None = None
 
     def push(self, frame: str) -> None:
         """Queue ``frame``; called on the publish path, so it never blocks."""
         frames = self._frames
+        if not frames and self.send_now is not None and self.send_now(frame):
+            return
         if len(frames) == frames.maxlen:
             self.dropped += 1
         frames.append(frame)

@@ -105,20 +105,26 @@ async def test_slow_reader_loses_oldest_and_does_not_slow_others(start_node) -> 
         stream_url(sink.url, "/echo")
     ) as fast:
         await wait_until(lambda: len(sink._endpoints["/echo"].outboxes) == 2, what="both readers")
-        for i in range(20_000):
-            sink.publisher.publish(Twist(linear={"x": float(i)}))
-            if i % 500 == 0:
-                await asyncio.sleep(0)
+        outboxes = sink._endpoints["/echo"].outboxes
+        # Publish until the slow reader's socket has backed up (kernel buffers hold megabytes)
+        # and its outbox drops; the publisher never waits for it.
+        published = 0
+        deadline = asyncio.get_running_loop().time() + 30
+        while max(o.dropped for o in outboxes) == 0:
+            assert asyncio.get_running_loop().time() < deadline, "no frame was ever dropped"
+            for _ in range(500):
+                sink.publisher.publish(Twist(linear={"x": float(published)}))
+                published += 1
+            await asyncio.sleep(0)
+        final = float(published - 1)
         # The fast reader gets the last message; the slow one still ends on it, having lost the middle.
         last = None
-        while last != 19_999.0:
+        while last != final:
             last = json.loads(await asyncio.wait_for(fast.recv(), 5))["linear"]["x"]
-        outboxes = sink._endpoints["/echo"].outboxes
-        assert max(o.dropped for o in outboxes) > 0
         received = []
-        while not received or received[-1] != 19_999.0:
+        while not received or received[-1] != final:
             received.append(json.loads(await asyncio.wait_for(slow.recv(), 5))["linear"]["x"])
-        assert len(received) < 20_000
+        assert len(received) < published
 
 
 async def test_rate_option_throttles_to_newest(start_node) -> None:
