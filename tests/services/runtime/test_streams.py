@@ -101,30 +101,32 @@ async def test_bad_options_close_with_1008(start_node, query) -> None:
 
 async def test_slow_reader_loses_oldest_and_does_not_slow_others(start_node) -> None:
     sink = await start_node(Teleop)
-    async with connect(stream_url(sink.url, "/echo", queue=5), max_queue=1) as slow, connect(
-        stream_url(sink.url, "/echo")
-    ) as fast:
-        await wait_until(lambda: len(sink._endpoints["/echo"].outboxes) == 2, what="both readers")
-        outboxes = sink._endpoints["/echo"].outboxes
-        # Publish until the slow reader's socket has backed up (kernel buffers hold megabytes)
-        # and its outbox drops; the publisher never waits for it.
-        published = 0
-        deadline = asyncio.get_running_loop().time() + 30
-        while max(o.dropped for o in outboxes) == 0:
-            assert asyncio.get_running_loop().time() < deadline, "no frame was ever dropped"
-            for _ in range(500):
-                sink.publisher.publish(Twist(linear={"x": float(published)}))
-                published += 1
-            await asyncio.sleep(0)
-        final = float(published - 1)
-        # The fast reader gets the last message; the slow one still ends on it, having lost the middle.
-        last = None
-        while last != final:
-            last = json.loads(await asyncio.wait_for(fast.recv(), 5))["linear"]["x"]
-        received = []
-        while not received or received[-1] != final:
-            received.append(json.loads(await asyncio.wait_for(slow.recv(), 5))["linear"]["x"])
-        assert len(received) < published
+    outboxes = sink._endpoints["/echo"].outboxes
+    async with connect(stream_url(sink.url, "/echo", queue=5), max_queue=1) as slow:
+        await wait_until(lambda: len(outboxes) == 1, what="the slow reader")
+        (slow_outbox,) = outboxes
+        async with connect(stream_url(sink.url, "/echo")) as fast:
+            await wait_until(lambda: len(outboxes) == 2, what="both readers")
+            # Publish until the slow reader's socket has backed up (kernel buffers hold
+            # megabytes) and its outbox drops; the publisher never waits for it.
+            published = 0
+            deadline = asyncio.get_running_loop().time() + 30
+            while slow_outbox.dropped == 0:
+                assert asyncio.get_running_loop().time() < deadline, "the slow reader's outbox never dropped"
+                for _ in range(500):
+                    sink.publisher.publish(Twist(linear={"x": float(published)}))
+                    published += 1
+                await asyncio.sleep(0)
+            final = float(published - 1)
+            # The fast reader gets the last message; the slow one still ends on it, having lost
+            # the middle.
+            last = None
+            while last != final:
+                last = json.loads(await asyncio.wait_for(fast.recv(), 5))["linear"]["x"]
+            received = []
+            while not received or received[-1] != final:
+                received.append(json.loads(await asyncio.wait_for(slow.recv(), 5))["linear"]["x"])
+            assert len(received) < published
 
 
 async def test_rate_option_throttles_to_newest(start_node) -> None:
