@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-import random
-import socket
 from collections.abc import AsyncIterator, Awaitable, Callable
 
 import pytest
@@ -14,34 +12,12 @@ import uvicorn
 from services.core.app import create_app
 from services.core.settings import CoreSettings
 from services.runtime import Node, NodeSettings
-
-# Test servers take ports below the range the kernel hands out to outgoing connections
-# (/proc/sys/net/ipv4/ip_local_port_range, 32768-60999 by default): a port picked there can be
-# taken by some client's connection between the pick and the server's bind.
-_TEST_PORTS = range(20000, 32000)
-
-
-def _bindable(port: int) -> bool:
-    with socket.socket() as sock:
-        try:
-            sock.bind(("127.0.0.1", port))
-        except OSError:
-            return False
-    return True
+from services.runtime.ports import free_port_block
 
 
 def free_port() -> int:
     """A TCP port free on loopback right now."""
     return free_port_block(1)
-
-
-def free_port_block(count: int) -> int:
-    """A base port such that base .. base+count-1 are all free on loopback right now."""
-    for _ in range(500):
-        base = random.randrange(_TEST_PORTS.start, _TEST_PORTS.stop - count)
-        if all(_bindable(base + offset) for offset in range(count)):
-            return base
-    raise RuntimeError("no block of free loopback ports found")
 
 
 async def wait_until(predicate: Callable[[], bool], timeout_s: float = 5.0, what: str = "condition") -> None:

@@ -12,7 +12,6 @@ import json
 import os
 import queue
 import signal
-import socket
 import subprocess
 import sys
 import tempfile
@@ -22,6 +21,8 @@ from pathlib import Path
 from typing import Any
 
 import httpx
+
+from services.runtime.ports import free_port_block
 
 __all__ = ["BenchError", "Worker", "free_port", "start_core", "wait_http", "worker_env"]
 
@@ -34,9 +35,7 @@ class BenchError(Exception):
 
 def free_port() -> int:
     """A TCP port free on loopback right now."""
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return int(sock.getsockname()[1])
+    return free_port_block(1)
 
 
 def worker_env(core_url: str | None = None, **extra: str) -> dict[str, str]:

@@ -11,7 +11,6 @@ one by one instead (``skydeck core`` + ``skydeck run ...``) and the result says 
 from __future__ import annotations
 
 import contextlib
-import socket
 import sys
 import time
 from pathlib import Path
@@ -19,7 +18,8 @@ from typing import Any
 
 import httpx
 
-from services.bench.processes import BenchError, Worker, free_port, worker_env
+from services.bench.processes import BenchError, Worker, worker_env
+from services.runtime.ports import free_port_block
 
 __all__ = ["measure_startup", "tree_memory_mb"]
 
@@ -90,23 +90,7 @@ def _wait_ready(client: httpx.Client, base_port: int, workers: list[Worker], sta
 
 
 def _base_port() -> int:
-    # Five consecutive free ports: try a few random bases.
-    for _ in range(50):
-        base = free_port()
-        if base + len(NODES) > 65535:
-            continue
-        if all(_port_free(base + offset) for offset in range(1, len(NODES) + 1)):
-            return base
-    raise BenchError("found no five consecutive free ports for the workshop system")
-
-
-def _port_free(port: int) -> bool:
-    with socket.socket() as sock:
-        try:
-            sock.bind(("127.0.0.1", port))
-        except OSError:
-            return False
-    return True
+    return free_port_block(len(NODES) + 1)  # the core and each node
 
 
 def measure_startup(*, seed: int = 1, fallback_only: bool = False) -> dict[str, Any]:

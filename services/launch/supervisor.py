@@ -19,7 +19,6 @@ import enum
 import os
 import shlex
 import signal
-import socket
 import subprocess
 import sys
 import time
@@ -33,6 +32,7 @@ from services.launch.errors import LaunchError
 from services.launch.plan import LaunchOptions, NodePlan, core_url, default_command, plan_launch
 from services.launch.spec import LaunchSpec, default_launch_file, load_launch_file
 from services.runtime.http_client import HttpClient, HttpError
+from services.runtime.ports import port_is_free
 
 __all__ = ["CommandFor", "NodeState", "NodeStatus", "Supervisor", "run_launch"]
 
@@ -316,16 +316,12 @@ class Supervisor:
 
     def _check_ports_free(self) -> None:
         for plan in self.plans:
-            with socket.socket() as probe:
-                probe.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
-                try:
-                    probe.bind(("127.0.0.1", plan.port))
-                except OSError:
-                    raise LaunchError(
-                        f"port {plan.port} for {plan.name} is already in use: is another launch or "
-                        "node running? stop it or choose another --base-port",
-                        node=plan.name,
-                    ) from None
+            if not port_is_free(plan.port):
+                raise LaunchError(
+                    f"port {plan.port} for {plan.name} is already in use: is another launch or "
+                    "node running? stop it or choose another --base-port",
+                    node=plan.name,
+                )
 
     async def _start_first(self, child: _Child) -> None:
         plan = child.plan
