@@ -44,12 +44,7 @@ def _latency(samples: dict[str, list[float]], path: Path) -> Path:
     ax.set_ylabel("fraction of messages")
     ax.axhline(0.99, color="#cccccc", linewidth=0.8, linestyle="--")
     ax.set_title("Topic latency distribution (PoseStamped JSON)")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(loc="lower right")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return _save(fig, ax, path, legend_loc="lower right")
 
 
 def _throughput(rates: dict[str, float], path: Path) -> Path:
@@ -66,12 +61,7 @@ def _throughput(rates: dict[str, float], path: Path) -> Path:
     ax.set_xlabel("message size (bytes of JSON)")
     ax.set_ylabel("messages/s delivered")
     ax.set_title("Topic throughput by message size, one publisher -> one subscriber")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return _save(fig, ax, path)
 
 
 def _rtf(readings: dict[str, dict[str, float]], path: Path) -> Path:
@@ -94,8 +84,15 @@ def _rtf(readings: dict[str, dict[str, float]], path: Path) -> Path:
     ax.set_ylabel("real-time factor (sim s per wall s, log scale)")
     ax.set_yscale("log")
     ax.set_title("Simulator speed by box count")
+    return _save(fig, ax, path)
+
+
+def _save(fig: Any, ax: Any, path: Path, *, legend_loc: str = "best") -> Path:
+    """The finish every plot shares: grid, legend, tight layout, PNG, figure closed."""
+    import matplotlib.pyplot as plt
+
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend()
+    ax.legend(loc=legend_loc)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
