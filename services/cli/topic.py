@@ -139,24 +139,26 @@ def _hz(args: argparse.Namespace) -> int:
 
     async def run() -> None:
         arrivals: deque[float] = deque(maxlen=args.window + 1)
-        reports = 0
-        next_report = time.monotonic() + 1.0
-        frames = _frames(name, queue=10_000)
-        while True:
-            try:
-                async with asyncio.timeout(max(0.0, next_report - time.monotonic())):
-                    await frames.__anext__()
-                    arrivals.append(time.monotonic())
-            except TimeoutError:
-                pass
-            except StopAsyncIteration:
-                return
-            if time.monotonic() >= next_report:
+
+        async def count_arrivals() -> None:
+            # Its own task: a report's deadline must never cancel a read (that ends the stream).
+            async for _ in _frames(name, queue=10_000):
+                arrivals.append(time.monotonic())
+
+        reader = asyncio.create_task(count_arrivals())
+        try:
+            reports = 0
+            next_report = time.monotonic() + 1.0
+            while args.count is None or reports < args.count:
+                await asyncio.wait({reader}, timeout=max(0.0, next_report - time.monotonic()))
+                if reader.done():
+                    reader.result()  # the stream ended: its error, if any, is the CLI's error
+                    return
                 next_report += 1.0
                 _print_rate(arrivals)
                 reports += 1
-                if args.count is not None and reports >= args.count:
-                    return
+        finally:
+            reader.cancel()
 
     asyncio.run(run())
     return 0

@@ -49,8 +49,9 @@ async def test_topic_list_info_echo_and_hz(core, start_node) -> None:
     assert "Type: geometry_msgs/msg/PointStamped" in out and " * /talker (http://127.0.0.1:" in out
     status, out, _ = await skydeck(core.url, "topic", "echo", "/my_point", "--once")
     assert status == 0 and "frame_id: odom" in out and "x: 1.0" in out and out.rstrip().endswith("---")
-    status, out, _ = await skydeck(core.url, "topic", "hz", "/my_point", "-n", "2")
+    status, out, _ = await skydeck(core.url, "topic", "hz", "/my_point", "-n", "3")
     assert status == 0 and "average rate:" in out
+    assert sum(line.startswith("average rate:") for line in out.splitlines()) == 3  # one per second, -n of them
 
 
 async def test_topic_pub_once_reaches_subscriber(core, start_node) -> None:
