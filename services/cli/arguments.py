@@ -32,6 +32,16 @@ def positive_float(text: str) -> float:
     return value
 
 
+def node_name(text: str) -> str:
+    """A node name as the user typed it, resolved ("sim" -> "/sim"), by the rule nodes are named by."""
+    from shared_models import InvalidNameError, resolve_node_name
+
+    try:
+        return resolve_node_name(text)
+    except InvalidNameError as error:
+        raise CliError(str(error)) from None
+
+
 def ros_name(text: str) -> str:
     """A topic or service name as the user typed it, resolved ("my_point" -> "/my_point")."""
     from shared_models import (  # loads every message type: only when used

@@ -11,7 +11,7 @@ from services.runtime.settings import DEFAULT_CORE_URL
 if TYPE_CHECKING:
     import httpx
 
-__all__ = ["auth_headers", "core_url", "get_json", "post_json", "ws_url"]
+__all__ = ["auth_headers", "core_url", "error_detail", "get_json", "post_json", "ws_url"]
 
 
 def core_url() -> str:
@@ -51,7 +51,7 @@ def get_json(path: str, *, missing: str | None = None) -> Any:
     if reply.status_code == 404 and missing is not None:
         raise CliError(missing)
     if reply.status_code != 200:
-        raise CliError(f"the core answered {reply.status_code} for {path}: {_detail(reply)}")
+        raise CliError(f"the core answered {reply.status_code} for {path}: {error_detail(reply)}")
     return reply.json()
 
 
@@ -67,9 +67,14 @@ def post_json(path: str, body: Any, *, timeout_s: float) -> httpx.Response:
         raise _unreachable(error) from None
 
 
-def _detail(reply: httpx.Response) -> str:
+def error_detail(reply: httpx.Response) -> str:
+    """What a refusal says: its ``detail``, and for FastAPI's 422 the first bad field."""
     try:
-        detail = reply.json().get("detail", reply.text)
+        body = reply.json()
     except ValueError:
         return reply.text.strip()
+    detail = body.get("detail", reply.text) if isinstance(body, dict) else body
+    if isinstance(detail, list) and detail and isinstance(detail[0], dict):  # FastAPI's 422
+        first = detail[0]
+        return f"{'.'.join(str(p) for p in first.get('loc', [])[1:]) or 'body'}: {first.get('msg')}"
     return detail if isinstance(detail, str) else str(detail)

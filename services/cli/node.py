@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from services.cli.arguments import node_name
 from services.cli.core_client import get_json
-from services.cli.errors import CliError
 
 __all__ = ["add_parser"]
 
@@ -27,9 +27,7 @@ def _list(args: argparse.Namespace) -> int:
 
 
 def _info(args: argparse.Namespace) -> int:
-    name = "/" + args.node.strip("/")
-    if not name.strip("/"):
-        raise CliError("give a node name, e.g. `skydeck node info /sim`")
+    name = node_name(args.node)
     node = get_json(f"/api/nodes{name}", missing=f"unknown node {name}: see `skydeck node list`")
     graph = get_json("/api/graph")
     types = {t["name"]: t["type"] for t in graph["topics"]}

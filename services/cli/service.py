@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from services.cli.arguments import ros_name
-from services.cli.core_client import get_json, post_json
+from services.cli.core_client import error_detail, get_json, post_json
 from services.cli.errors import CliError
 from services.cli.formatting import parse_data, to_yaml
 
@@ -60,13 +60,6 @@ def _call(args: argparse.Namespace) -> int:
     name = ros_name(args.service)
     reply = post_json(name, parse_data(args.data), timeout_s=args.timeout)
     if reply.status_code != 200:
-        try:
-            detail = reply.json().get("detail")
-        except ValueError:
-            detail = reply.text
-        if isinstance(detail, list):  # FastAPI's 422: name the first bad field
-            first = detail[0]
-            detail = f"{'.'.join(str(p) for p in first.get('loc', [])[1:]) or 'body'}: {first.get('msg')}"
-        raise CliError(f"{name}: {detail} (HTTP {reply.status_code})")
+        raise CliError(f"{name}: {error_detail(reply)} (HTTP {reply.status_code})")
     print(to_yaml(reply.json()))
     return 0
