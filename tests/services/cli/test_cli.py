@@ -7,6 +7,7 @@ import os
 import sys
 
 import pytest
+import yaml
 
 from services.runtime import Node
 from shared_models.geometry_msgs import Point, PointStamped, Twist
@@ -92,6 +93,14 @@ async def test_node_list_and_info_show_pid(core, start_node) -> None:
     assert f"Pid: {os.getpid()}" in out and " * /my_point [geometry_msgs/msg/PointStamped]" in out
     status, _, err = await skydeck(core.url, "node", "info", "/nobody")
     assert status == 1 and "skydeck node list" in err
+    status, _, err = await skydeck(core.url, "node", "info", "bad name")
+    assert status == 1 and err.startswith("skydeck: error:") and "'bad name'" in err and len(err.splitlines()) == 1
+
+
+async def test_interface_proto_prints_a_default_message_as_yaml(core) -> None:
+    status, out, _ = await skydeck(core.url, "interface", "proto", "geometry_msgs/msg/Twist")
+    assert status == 0
+    assert yaml.safe_load(out) == {"linear": {"x": 0.0, "y": 0.0, "z": 0.0}, "angular": {"x": 0.0, "y": 0.0, "z": 0.0}}
 
 
 async def test_interface_show_prints_ros_text(core) -> None:

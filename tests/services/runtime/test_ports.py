@@ -22,5 +22,5 @@ def test_a_listening_port_is_not_free_and_a_closed_one_is() -> None:
 
 def test_a_block_is_free_and_below_the_outgoing_connection_range() -> None:
     base = free_port_block(5)
-    assert 20000 <= base and base + 4 < 32000
+    assert base >= 20000 and base + 4 < 32000
     assert all(port_is_free(base + offset) for offset in range(5))
