@@ -58,6 +58,7 @@ class Timer:
                 due_s = clock.now_s() + period_s
                 continue
             if self._canceled:
+                await self._reset.wait()  # idle until reset(); the next pass re-arms the period
                 continue
             if clock.use_sim_time and clock.now_s() < due_s:  # sim time jumped back (a restarted simulator)
                 due_s = clock.now_s() + period_s
