@@ -31,7 +31,7 @@ async def _burst_into(subscription: Subscription, burst: int, received: list[int
         link = PublisherLink(
             f"http://127.0.0.1:{port}",
             "/burst",
-            lambda frame: subscription.enqueue(Int32.model_validate_json(frame)),
+            lambda frame: subscription.receive(Int32.model_validate_json(frame)),  # as a node wires its links
             queue_size=subscription.queue_size,
             max_message_bytes=1 << 20,
             ping_interval_s=5.0,

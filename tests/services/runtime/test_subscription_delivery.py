@@ -79,3 +79,11 @@ async def test_coroutine_callback_is_never_called_inline() -> None:
     subscription = Subscription("/t", String, callback, 10)
     subscription.receive(_msg(1))
     assert got == []
+
+
+async def test_local_publish_into_a_full_queue_drops_the_oldest_and_calls_nothing() -> None:
+    got: list[str] = []
+    subscription = Subscription("/t", String, lambda msg: got.append(msg.data), 5)
+    for i in range(20):
+        subscription.enqueue(_msg(i))
+    assert got == [] and subscription.dropped == 15
