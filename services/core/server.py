@@ -12,6 +12,7 @@ import uvicorn
 
 from services.core.app import create_app
 from services.core.settings import CoreSettings
+from services.runtime.executor import configure_logging
 
 __all__ = ["serve"]
 
@@ -39,8 +40,7 @@ class _Server(uvicorn.Server):
 def serve(settings: CoreSettings | None = None) -> None:
     """Serve the core until Ctrl-C or SIGTERM."""
     settings = settings or CoreSettings()
-    logging.basicConfig(level=settings.log_level.upper(), format="[%(levelname)s] [%(name)s] %(message)s")
-    logging.getLogger("httpx").setLevel(logging.WARNING)
+    configure_logging(settings.log_level)
     logging.getLogger("skydeck.core").info(
         "core at http://%s:%d (dashboard /, every command /docs)", settings.host, settings.port
     )

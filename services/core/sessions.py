@@ -20,7 +20,12 @@ from services.runtime.protocol import (
     UpdateFrame,
     node_frames,
 )
-from services.runtime.stream import CLOSE_BAD_OPTION, CLOSE_INVALID_FRAME, close_with
+from services.runtime.stream import (
+    CLOSE_BAD_OPTION,
+    CLOSE_INVALID_FRAME,
+    CLOSE_UNSUPPORTED,
+    close_with,
+)
 
 __all__ = ["serve_session"]
 
@@ -28,6 +33,8 @@ logger = logging.getLogger("skydeck.core")
 
 # A private close code: this session's node name was taken by a newer node.
 CLOSE_REPLACED = 4000
+# How a rejection frame starts (its `op` comes first), taken from the model, not written again.
+_REJECTED = RejectedFrame(reason="").model_dump_json().split(",")[0]
 NOT_AUTHORISED_SESSION = "registering needs the core's token (SKYDECK_TOKEN): Authorization: Bearer TOKEN"
 # A node with the wrong token retries twice a second: say so once in a while, not every time.
 _REFUSAL_LOG_EVERY_S = 10.0
@@ -70,6 +77,9 @@ async def serve_session(websocket: WebSocket, registry: Registry, *, token: str 
             except ValidationError as error:
                 await close_with(websocket, CLOSE_INVALID_FRAME, f"not a session frame: {error.errors()[0]['msg']}")
                 return
+            except KeyError:  # Starlette's receive_text() on a binary frame
+                await close_with(websocket, CLOSE_UNSUPPORTED, "session frames are JSON text, not binary")
+                return
             if isinstance(frame, UpdateFrame) and frame.node.name == name:
                 registry.update(frame.node, send)
             elif isinstance(frame, StatsFrame):
@@ -101,6 +111,6 @@ async def _write(websocket: WebSocket, outgoing: asyncio.Queue[str]) -> None:
             frame = await outgoing.get()
             await websocket.send_text(frame)
             # A rejection ends the session: the node's name now belongs to a newer node.
-            if frame.startswith('{"op":"rejected"'):
+            if frame.startswith(_REJECTED):
                 await close_with(websocket, CLOSE_REPLACED, "replaced by a newer node with the same name")
                 return

@@ -27,8 +27,6 @@ def configure_logging(level: str = "INFO") -> None:
     root = logging.getLogger()
     if not root.handlers:
         logging.basicConfig(level=level.upper(), format="[%(levelname)s] [%(name)s] %(message)s")
-        # One line per HTTP request would drown the node's own log.
-        logging.getLogger("httpx").setLevel(logging.WARNING)
 
 
 def spin(node: Node) -> None:

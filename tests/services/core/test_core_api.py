@@ -2,11 +2,17 @@
 
 from __future__ import annotations
 
+import asyncio
 import os
 
 import httpx
+import pytest
+from websockets.asyncio.client import connect
+from websockets.exceptions import ConnectionClosed
 
 from services.runtime import Node
+from services.runtime.links import stream_url
+from services.runtime.protocol import RegisterFrame
 from shared_models.geometry_msgs import PoseStamped
 from shared_models.std_srvs import Trigger, TriggerResponse
 from tests.conftest import wait_until
@@ -88,3 +94,36 @@ async def test_unknown_names_and_reserved_paths(core) -> None:
     assert bad.status_code == 404 and "invalid name" in bad.json()["detail"]
     assert health.json()["status"] == "ok"
     assert big.status_code == 413
+
+
+async def test_a_topic_posted_or_a_service_read_is_405_and_redoc_leads_to_docs(core, start_node) -> None:
+    await start_node(Sim)
+    async with httpx.AsyncClient() as http:
+        posted = await http.post(core.url + "/drone/pose")
+        read = await http.get(core.url + "/simulator/reset")
+        redoc = await http.get(core.url + "/redoc", follow_redirects=False)
+    assert posted.status_code == 405 and "is a topic" in posted.json()["detail"]
+    assert read.status_code == 405 and "call it with POST" in read.json()["detail"]
+    assert redoc.is_redirect and redoc.headers["location"] == "/docs"
+
+
+async def test_a_newer_node_takes_the_name_and_the_older_is_told(core, start_node) -> None:
+    older = await start_node(Sim)
+    newer = await start_node(Sim)
+    await wait_until(lambda: core.registry.nodes["/sim"].description.url == newer.url, what="the newer node's URL")
+    assert older.url != newer.url
+    await wait_until(lambda: older._stopping is not None and older._stopping.is_set(), what="the older node told to stop")
+
+
+async def test_a_binary_session_frame_closes_that_session_with_1003(core, start_node) -> None:
+    sim = await start_node(Sim)
+    register = RegisterFrame(node=sim.describe()).model_dump_json()
+    async with connect(stream_url(core.url, "/api/session")) as websocket:
+        await websocket.send(register.replace('"name":"/sim"', '"name":"/other"'))
+        await websocket.recv()  # registered
+        await websocket.send(b"\x00\x01")
+        with pytest.raises(ConnectionClosed) as closed:
+            while True:
+                await asyncio.wait_for(websocket.recv(), 5)
+    assert closed.value.rcvd is not None and closed.value.rcvd.code == 1003
+    assert "/sim" in core.registry.nodes  # nothing else disturbed
