@@ -31,6 +31,7 @@ from services.core.settings import CoreSettings
 from services.runtime.http_client import HttpClient
 from services.runtime.limits import BodySizeLimit
 from services.runtime.origin import SameOriginOnly
+from services.runtime.settings import reachable_host
 
 __all__ = ["create_app"]
 
@@ -43,7 +44,7 @@ def create_app(settings: CoreSettings | None = None) -> FastAPI:
     """The core as an ASGI app; ``settings.advertise_url`` (or host/port) is where nodes reach it."""
     settings = settings or CoreSettings()
     registry = Registry()
-    gateway_url = settings.advertise_url or f"http://{settings.host}:{settings.port}"
+    gateway_url = settings.advertise_url or f"http://{reachable_host(settings.host)}:{settings.port}"
 
     @contextlib.asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:

@@ -132,26 +132,28 @@ class Gateway:
             await close_with(websocket, code, str(error))
             return
         may_publish = token_matches(self._settings.token, websocket)
-        publishing = False
+        published_type: type[Message] | None = None  # set by the first valid frame: then fixed
 
         def on_frame(text: str) -> None:
-            nonlocal publishing
+            nonlocal published_type
             if not may_publish:
                 raise FrameRejected(CLOSE_BAD_OPTION, NOT_AUTHORISED)
+            if published_type is not None:
+                self._relays.publish(topic, parse_frame(published_type, published_type.__ros_type__, text))
+                return
             msg_type = self._topic_type(topic, declared_type)
-            msg = parse_frame(msg_type, msg_type.__ros_type__, text)
-            if not publishing:
-                self._relays.open_publication(topic, msg_type)
-                publishing = True
+            msg = parse_frame(msg_type, msg_type.__ros_type__, text)  # before opening: a bad first frame opens nothing
+            self._relays.open_publication(topic, msg_type)
+            published_type = msg_type
             self._relays.publish(topic, msg)
 
-        outbox = Outbox(1 if options.rate_hz else options.queue)
+        outbox = Outbox(options.outbox_size)
         initial_frame = self._relays.attach(topic, outbox)
         try:
             await serve_stream(websocket, outbox, options=options, initial_frame=initial_frame, on_frame=on_frame)
         finally:
             self._relays.detach(topic, outbox)
-            if publishing:
+            if published_type is not None:
                 self._relays.close_publication(topic)
 
     async def handle_gateway_publication(self, websocket: WebSocket) -> None:
@@ -167,7 +169,7 @@ class Gateway:
         except FrameRejected as rejected:
             await close_with(websocket, rejected.code, rejected.reason)
             return
-        outbox = Outbox(options.queue)
+        outbox = Outbox(options.outbox_size)
         publication.outboxes.add(outbox)
         try:
             await serve_stream(

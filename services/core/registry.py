@@ -26,7 +26,6 @@ class NodeRecord:
 
     description: NodeDescription
     send: SendFrame
-    registered_at: float = field(default_factory=time.time)
     # Publishing rates from the node's cumulative counts: topic -> (count, monotonic time, rate).
     counters: dict[str, tuple[int, float, float | None]] = field(default_factory=dict)
     # What this session was last told about each subscribed topic.

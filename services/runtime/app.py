@@ -104,7 +104,7 @@ class NodeApp:
                 msg = parse_frame(endpoint.msg_type, endpoint.type_name, text)
                 node._inject(endpoint, msg)
 
-            outbox = Outbox(1 if options.rate_hz else options.queue)
+            outbox = Outbox(options.outbox_size)
             endpoint.outboxes.add(outbox)
             try:
                 await serve_stream(

@@ -46,7 +46,6 @@ class PublisherLink:
         ping_timeout_s: float,
         token: str = "",
     ) -> None:
-        self.publisher_url = publisher_url
         self.topic = topic
         self.url = stream_url(publisher_url, topic, queue=queue_size)
         self._on_frame = on_frame

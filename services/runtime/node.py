@@ -30,7 +30,7 @@ from services.runtime.protocol import Entity, NodeDescription, PublisherAddress
 from services.runtime.publisher import Publisher
 from services.runtime.service import Service
 from services.runtime.session import CoreSession, RegistrationRejected
-from services.runtime.settings import NodeSettings
+from services.runtime.settings import NodeSettings, reachable_host
 from services.runtime.subscription import Subscription
 from services.runtime.timer import Timer
 from shared_models import Message, ServiceType, resolve_name, resolve_node_name
@@ -307,7 +307,7 @@ class Node:
         self._stopping = asyncio.Event()
         sock = _bind(self.settings.host, self.settings.port)
         port = sock.getsockname()[1]
-        self._url = (self.settings.advertise_url or f"http://{_reachable_host(self.settings.host)}:{port}").rstrip("/")
+        self._url = (self.settings.advertise_url or f"http://{reachable_host(self.settings.host)}:{port}").rstrip("/")
         config = uvicorn.Config(
             self._app.fastapi,
             log_level="warning",
@@ -401,8 +401,3 @@ def _bind(host: str, port: int) -> socket.socket:
     return sock
 
 
-def _reachable_host(host: str) -> str:
-    # 0.0.0.0 is where we listen, not where others reach us: say so with --advertise-url.
-    if host in ("0.0.0.0", "::", ""):
-        return socket.gethostname()
-    return host

@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 import os
+import socket
 
 from pydantic import Field
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
-__all__ = ["DEFAULT_CORE_URL", "MAX_MESSAGE_BYTES", "NodeSettings", "settings_with_default_port"]
+__all__ = ["DEFAULT_CORE_URL", "MAX_MESSAGE_BYTES", "NodeSettings", "reachable_host", "settings_with_default_port"]
 
 DEFAULT_CORE_URL = "http://127.0.0.1:8000"
 # Frames and bodies above this are refused (WebSocket close 1009, HTTP 413): a camera frame is
@@ -48,3 +49,11 @@ def settings_with_default_port(default_port: int) -> NodeSettings:
     if "SKYDECK_PORT" in os.environ:
         return NodeSettings()
     return NodeSettings(port=default_port)
+
+
+def reachable_host(host: str) -> str:
+    """Where others reach a server listening on ``host``: 0.0.0.0 is where it listens, not an
+    address, so the machine's name stands in (``--advertise-url`` says better)."""
+    if host in ("0.0.0.0", "::", ""):
+        return socket.gethostname()
+    return host

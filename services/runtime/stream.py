@@ -84,6 +84,11 @@ class StreamOptions:
                 raise FrameRejected(CLOSE_BAD_OPTION, f"rate must be a number in (0, {MAX_RATE_HZ:g}]")
         return cls(queue=queue, rate_hz=rate_hz)
 
+    @property
+    def outbox_size(self) -> int:
+        """A throttled reader gets only the newest frame; others a queue of ``queue``."""
+        return 1 if self.rate_hz else self.queue
+
 
 def describe_validation_error(type_name: str, error: ValidationError) -> str:
     """One line naming the first bad field of a frame: ``invalid geometry_msgs/msg/Twist: ...``."""
