@@ -12,7 +12,7 @@ import math
 import pybullet as p
 from PIL import Image
 
-from sim_server.world import World
+from sim_server.world import World, yaw_of
 
 __all__ = ["render_jpeg"]
 
@@ -35,8 +35,8 @@ def render_jpeg(world: World, width: int = 320, height: int = 240, quality: int 
         raise ValueError(f"image size {width}x{height} is outside 1..4096 pixels per side")
     if not 1 <= quality <= 95:
         raise ValueError(f"quality={quality} is outside [1, 95] (Pillow's useful JPEG range)")
-    (x, y, z), (qx, qy, qz, qw) = world.drone_pose()
-    yaw = math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+    (x, y, z), orientation = world.drone_pose()
+    yaw = yaw_of(orientation)
     eye = (
         x - _CHASE_DISTANCE_M * math.cos(yaw),
         y - _CHASE_DISTANCE_M * math.sin(yaw),

@@ -40,7 +40,7 @@ from sim_server.limits import (
 )
 from sim_server.scene import BOX_COLOURS, create_box, create_drone, create_ground
 
-__all__ = ["DroneState", "InvalidCommand", "World", "WorldConfig"]
+__all__ = ["DroneState", "InvalidCommand", "World", "WorldConfig", "yaw_of"]
 
 Vector3 = tuple[float, float, float]
 Quaternion = tuple[float, float, float, float]
@@ -140,7 +140,7 @@ class World:
         self._check_open()
         (px, py, pz), orientation = self.drone_pose()
         self._arbiter.set_setpoint(
-            self.time_s, x, y, z, yaw, drone_pose=(px, py, pz, _yaw_of(orientation))
+            self.time_s, x, y, z, yaw, drone_pose=(px, py, pz, yaw_of(orientation))
         )
 
     def set_cmd_vel(
@@ -191,7 +191,7 @@ class World:
             (vx, vy, vz), (wx, wy, wz) = get_velocity(drone, physicsClientId=client)
             if steps % divider == 0:
                 px, py, pz = position
-                yaw = _yaw_of((qx, qy, qz, qw))
+                yaw = yaw_of((qx, qy, qz, qw))
                 ref = arbiter.update(steps * PHYSICS_DT_S, outer_dt, px, py, pz, yaw)
                 controller.update_position(ref, px, py, pz, vx, vy, vz, outer_dt)
             if not controller.idle:
@@ -279,7 +279,7 @@ class World:
         self._arbiter.reset(*self._start, yaw=0.0)
 
 
-def _yaw_of(q: Quaternion) -> float:
+def yaw_of(q: Quaternion) -> float:
     """Heading (rotation about world z) of an orientation quaternion (x, y, z, w), in rad."""
     qx, qy, qz, qw = q
     return math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
