@@ -138,3 +138,14 @@ async def test_bad_setting_in_the_environment_is_one_line(core, monkeypatch) -> 
     monkeypatch.setenv("SKYDECK_PORT", "abc")
     status, _, err = await skydeck(core.url, "run", "perception")
     assert status == 1 and err.startswith("skydeck: error: SKYDECK_PORT:") and err.count("\n") == 1
+
+
+async def test_topic_pub_once_reaches_a_subscriber_that_comes_a_moment_later(core, start_node) -> None:
+    """The gateway's publication is latched and stays advertised 2 s after the last socket
+    closes, so `pub --once` reaches a node that links after the command has exited."""
+    status, _, err = await skydeck(
+        core.url, "topic", "pub", "--once", "/drone/cmd_vel", "geometry_msgs/msg/Twist", "{linear: {x: 0.25}}"
+    )
+    assert status == 0, err
+    talker = await start_node(Talker)
+    await wait_until(lambda: any(t.linear.x == 0.25 for t in talker.twists), timeout_s=5, what="the latched Twist")
