@@ -1,9 +1,11 @@
 """Typed ROS messages and service types for Skydeck (pydantic v2), and ROS-style names.
 
 Messages live in one module per ROS package (``shared_models.geometry_msgs.PointStamped``...);
-importing this package imports all of them, so :func:`get_interface` knows every type.
+:func:`get_interface` imports all of them on first use (:mod:`shared_models.catalogue`), and the
+exports load lazily, so importing :mod:`shared_models.errors` or ``names`` costs no message type.
 
-Exceptions (both plain built-in subclasses, so callers need no Skydeck base class)::
+Exceptions (descending from :class:`~shared_models.errors.SkydeckError`, and from the built-in
+class a caller would expect)::
 
     ValueError
      └── InvalidNameError       a topic, service or node name that is not a valid ROS name
@@ -11,30 +13,26 @@ Exceptions (both plain built-in subclasses, so callers need no Skydeck base clas
      └── UnknownInterfaceError  a type name no registered message or service has
 """
 
-# Imported for their registration side effect: every message module, dependencies first.
-from shared_models import (  # noqa: F401
-    builtin_interfaces,
-    geometry_msgs,
-    mavros_msgs,
-    rcl_interfaces,
-    ros_workshop,
-    sensor_msgs,
-    std_msgs,
-    std_srvs,
-)
-from shared_models._message import Message, ServiceType, all_interfaces
-from shared_models.interfaces import (
-    UnknownInterfaceError,
-    get_interface,
-    interface_names,
-    interface_text,
-)
-from shared_models.names import (
-    RESERVED_PREFIXES,
-    InvalidNameError,
-    resolve_name,
-    resolve_node_name,
-)
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from shared_models.lazy import lazy_exports
+
+if TYPE_CHECKING:
+    from shared_models._message import Message, ServiceType, all_interfaces
+    from shared_models.interfaces import (
+        UnknownInterfaceError,
+        get_interface,
+        interface_names,
+        interface_text,
+    )
+    from shared_models.names import (
+        RESERVED_PREFIXES,
+        InvalidNameError,
+        resolve_name,
+        resolve_node_name,
+    )
 
 __all__ = [
     "RESERVED_PREFIXES",
@@ -49,3 +47,19 @@ __all__ = [
     "resolve_name",
     "resolve_node_name",
 ]
+
+_HOMES = {
+    "RESERVED_PREFIXES": "shared_models.names",
+    "InvalidNameError": "shared_models.names",
+    "Message": "shared_models._message",
+    "ServiceType": "shared_models._message",
+    "UnknownInterfaceError": "shared_models.interfaces",
+    "all_interfaces": "shared_models._message",
+    "get_interface": "shared_models.interfaces",
+    "interface_names": "shared_models.interfaces",
+    "interface_text": "shared_models.interfaces",
+    "resolve_name": "shared_models.names",
+    "resolve_node_name": "shared_models.names",
+}
+
+__getattr__ = lazy_exports(__name__, _HOMES)

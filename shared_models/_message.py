@@ -115,7 +115,10 @@ def _register(ros_type: str, cls: type[Message] | type[ServiceType]) -> None:
 
 
 def all_interfaces() -> dict[str, type[Message] | type[ServiceType]]:
-    """Every registered message and service type by its full ROS name."""
+    """Every message and service type by its full ROS name (the whole catalogue is loaded)."""
+    from shared_models.catalogue import load_catalogue
+
+    load_catalogue()
     return dict(_INTERFACES)
 
 

@@ -13,14 +13,18 @@ import typing
 from typing import Annotated, Any, ClassVar, get_args, get_origin
 
 from shared_models._message import Message, RosPrimitive, ServiceType, all_interfaces
+from shared_models.errors import SkydeckError
 
 __all__ = ["UnknownInterfaceError", "get_interface", "interface_names", "interface_text"]
 
 Interface = type[Message] | type[ServiceType]
 
 
-class UnknownInterfaceError(LookupError):
+class UnknownInterfaceError(SkydeckError, LookupError):
     """Raised by :func:`get_interface` for a name no registered type has; carries ``suggestions``."""
+
+    http_status = 404
+    close_code = 1008
 
     def __init__(self, name: str, suggestions: list[str]) -> None:
         hint = f" (did you mean {', '.join(suggestions)}?)" if suggestions else ""

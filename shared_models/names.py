@@ -11,6 +11,8 @@ name and points at the bad part.
 
 from __future__ import annotations
 
+from shared_models.errors import SkydeckError
+
 __all__ = [
     "RESERVED_PREFIXES",
     "InvalidNameError",
@@ -32,8 +34,11 @@ RESERVED_PREFIXES: tuple[str, ...] = (
 _ALLOWED = frozenset("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_/")
 
 
-class InvalidNameError(ValueError):
+class InvalidNameError(SkydeckError, ValueError):
     """Raised for a topic, service or node name that is not a valid ROS name; carries ``name``."""
+
+    http_status = 404
+    close_code = 1008
 
     def __init__(self, name: str, reason: str) -> None:
         super().__init__(f"invalid name {name!r}: {reason}")

@@ -11,7 +11,7 @@ limits) without loading PyBullet.
 
 from __future__ import annotations
 
-from services.runtime.lazy import lazy_exports
+from shared_models.lazy import lazy_exports
 
 __all__ = [
     "ControlMode",

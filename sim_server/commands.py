@@ -18,6 +18,7 @@ from __future__ import annotations
 import enum
 import math
 
+from shared_models.errors import SkydeckError
 from sim_server.controller import Reference
 from sim_server.limits import (
     CEILING_M,
@@ -36,7 +37,7 @@ _LEASH_M = 1.0
 """How far a cmd_vel-driven target may run ahead of a drone that cannot keep up."""
 
 
-class InvalidCommand(ValueError):
+class InvalidCommand(SkydeckError, ValueError):
     """Raised for a setpoint or cmd_vel that is not finite or is out of bounds.
 
     Carries the command name, the offending field and its value; the message names all three

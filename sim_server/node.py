@@ -20,7 +20,7 @@ from pydantic import Field, ValidationError, field_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 from services.runtime import Node, NodeSettings, spin
-from services.runtime.settings import settings_with_default_port
+from services.runtime.settings import process_settings
 from shared_models.builtin_interfaces import Time
 from shared_models.geometry_msgs import Point, Pose, PoseArray, PoseStamped, Quaternion, Twist
 from shared_models.mavros_msgs import PositionTarget, State
@@ -76,7 +76,7 @@ class SimulatorNode(Node):
     def __init__(
         self, sim: SimSettings | None = None, settings: NodeSettings | None = None
     ) -> None:
-        super().__init__("sim", settings=settings or settings_with_default_port(DEFAULT_PORT))
+        super().__init__("sim", settings=settings or process_settings(NodeSettings, port=DEFAULT_PORT))
         self.sim = sim or SimSettings()
         self.world = World(WorldConfig(seed=self.sim.seed, boxes=self.sim.boxes))
         self.pose_publisher = self.create_publisher(PoseStamped, "/drone/pose", 10)

@@ -20,8 +20,8 @@ from typing import Any
 import pytest
 import yaml
 
+from services.builtin_nodes import BUILTIN_NODES
 from services.cli.main import build_parser
-from services.cli.run import BUILTIN_NODES
 from sim_server.node import SimSettings
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -22,7 +22,7 @@ from typing import TypeVar
 from services.ai.planner import plan_tour
 from services.ai.progress import ProgressStore, default_state_dir, world_key
 from services.runtime import Client, Node, NodeSettings, ServiceError, ServiceUnavailableError, spin
-from services.runtime.settings import settings_with_default_port
+from services.runtime.settings import process_settings
 from shared_models import Message
 from shared_models.geometry_msgs import Point, Polygon, PoseStamped
 from shared_models.ros_workshop import AiStatus, ControlState, FlyCommand
@@ -56,7 +56,7 @@ class AiNode(Node):
     """The mission as one task; ``/ai/start`` restarts it, ``/ai/stop`` hovers."""
 
     def __init__(self, settings: NodeSettings | None = None, *, store: ProgressStore | None = None) -> None:
-        super().__init__("ai", settings=settings or settings_with_default_port(DEFAULT_PORT))
+        super().__init__("ai", settings=settings or process_settings(NodeSettings, port=DEFAULT_PORT))
         self.store = store or ProgressStore(default_state_dir())
         self.drone_position: Point | None = None
         self.boxes: list[tuple[float, float]] = []

@@ -81,8 +81,8 @@ def _all_ready(client: httpx.Client, base_port: int) -> bool:
 def _wait_ready(client: httpx.Client, base_port: int, workers: list[Worker], started: float) -> float:
     while time.monotonic() - started < _TIMEOUT_S:
         for worker in workers:
-            if worker.process.poll() is not None:
-                raise BenchError(f"{worker.name} exited ({worker.process.returncode}){worker._tail()}")
+            if worker.returncode is not None:
+                raise BenchError(f"{worker.name} exited ({worker.returncode}):\n{worker.tail(15)}")
         if _all_ready(client, base_port):
             return time.monotonic() - started
         time.sleep(0.01)

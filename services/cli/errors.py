@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+from shared_models.errors import SkydeckError
+
 __all__ = ["CliError"]
 
 
-class CliError(Exception):
+class CliError(SkydeckError):
     """A problem the user can fix; the message says what happened and what to do."""

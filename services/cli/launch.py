@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import argparse
 
-from services.cli.errors import CliError
-
 __all__ = ["add_parser"]
 
 
@@ -25,16 +23,13 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
 
 def _launch(args: argparse.Namespace) -> int:
     # Imported here: the supervisor is only needed by this verb.
-    from services.launch import LaunchError, LaunchOptions, run_launch
+    from services.launch import LaunchOptions, run_launch
 
-    try:
-        options = LaunchOptions(
-            base_port=args.base_port,
-            speed=args.speed,
-            seed=args.seed,
-            boxes=args.boxes,
-            exclude=tuple(name.strip() for name in args.exclude.split(",") if name.strip()),
-        )
-        return run_launch(args.file, options)
-    except LaunchError as error:
-        raise CliError(str(error)) from None
+    options = LaunchOptions(
+        base_port=args.base_port,
+        speed=args.speed,
+        seed=args.seed,
+        boxes=args.boxes,
+        exclude=tuple(name.strip() for name in args.exclude.split(",") if name.strip()),
+    )
+    return run_launch(args.file, options)  # a LaunchError is printed as one line by main

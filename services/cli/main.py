@@ -8,7 +8,7 @@ import sys
 from pydantic import ValidationError
 
 from services.cli import interface, node, run, service, topic
-from services.cli.errors import CliError
+from shared_models.errors import SkydeckError
 
 __all__ = ["build_parser", "main"]
 
@@ -48,7 +48,7 @@ def main(argv: list[str] | None = None) -> int:
     args.extra = extra
     try:
         return int(args.func(args) or 0)
-    except CliError as error:
+    except SkydeckError as error:  # every error Skydeck raises on purpose says what to do
         print(f"skydeck: error: {error}", file=sys.stderr)
         return 1
     except ValidationError as error:  # a SKYDECK_* variable that does not fit its setting

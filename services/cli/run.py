@@ -4,22 +4,14 @@ from __future__ import annotations
 
 import argparse
 import importlib
-import os
 import runpy
 import sys
 from pathlib import Path
 
+from services.builtin_nodes import BUILTIN_NODES
 from services.cli.errors import CliError
 
-__all__ = ["BUILTIN_NODES", "add_parsers"]
-
-# Built-in nodes by the name `skydeck run` and launch files use; each module has main(argv).
-BUILTIN_NODES = {
-    "sim": "sim_server.node",
-    "perception": "services.perception.node",
-    "control": "services.control.node",
-    "ai": "services.ai.node",
-}
+__all__ = ["add_parsers"]
 
 
 def add_parsers(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -52,34 +44,35 @@ def _port(text: str) -> int:
     return int(text)
 
 
-def _export_settings(args: argparse.Namespace) -> None:
-    """Flags become SKYDECK_* variables, which the node's and core's settings read."""
-    for flag, variable in (
-        ("host", "SKYDECK_HOST"),
-        ("port", "SKYDECK_PORT"),
-        ("advertise_url", "SKYDECK_ADVERTISE_URL"),
-        ("core_url", "SKYDECK_CORE_URL"),
-        ("log_level", "SKYDECK_LOG_LEVEL"),
-    ):
-        value = getattr(args, flag, None)
-        if value is not None:
-            os.environ[variable] = str(value)
-    if getattr(args, "use_sim_time", False):
-        os.environ["SKYDECK_USE_SIM_TIME"] = "true"
+def _apply_flags(args: argparse.Namespace) -> None:
+    """Flags become this process's settings, over its SKYDECK_* variables (no environment
+    round trip: a node or the core reads them through ``process_settings``)."""
+    from services.runtime.settings import set_process_overrides
+
+    set_process_overrides(
+        host=args.host,
+        port=args.port,
+        advertise_url=args.advertise_url,
+        core_url=getattr(args, "core_url", None),
+        log_level=args.log_level,
+        use_sim_time=True if getattr(args, "use_sim_time", False) else None,
+    )
 
 
 def _core(args: argparse.Namespace) -> int:
     if args.extra:
         raise CliError(f"unknown option for `skydeck core`: {' '.join(args.extra)}")
-    _export_settings(args)
+    _apply_flags(args)
     from services.core.server import serve
+    from services.core.settings import CoreSettings
+    from services.runtime.settings import process_settings
 
-    serve()
+    serve(process_settings(CoreSettings))
     return 0
 
 
 def _run(args: argparse.Namespace) -> int:
-    _export_settings(args)
+    _apply_flags(args)
     node_argv = list(args.extra)
     if args.node in BUILTIN_NODES:
         module = importlib.import_module(BUILTIN_NODES[args.node])

@@ -179,7 +179,7 @@ def _pub(args: argparse.Namespace) -> int:
     # The message types and the validation, here and not at the top: see cli/interface.py.
     from pydantic import ValidationError
 
-    from services.runtime.stream import describe_validation_error
+    from services.runtime.edge.frames import describe_validation_error
     from shared_models import Message, UnknownInterfaceError, get_interface
 
     name = ros_name(args.topic)

@@ -8,6 +8,7 @@ from fastapi import APIRouter, Depends, HTTPException, Request
 from pydantic import BaseModel
 
 from services.core.registry import Registry
+from services.runtime.wire import wire_description
 from shared_models import (
     Message,
     ServiceType,
@@ -37,6 +38,24 @@ def _registry(request: Request) -> Registry:
 
 
 RegistryDep = Annotated[Registry, Depends(_registry)]
+
+
+@router.get("/config")
+async def config() -> dict[str, Any]:
+    """What clients must agree on: close codes, stream limits, and each world's arena."""
+    from sim_server import limits  # constants only: no PyBullet
+
+    return {
+        **wire_description(),
+        "worlds": {
+            "drone": {
+                "arena_half_size_m": limits.ARENA_HALF_SIZE_M,
+                "fly_half_size_m": limits.FLY_HALF_SIZE_M,
+                "box_size_m": limits.BOX_SIZE_M,
+                "start_xy_m": list(limits.START_XY_M),
+            },
+        },
+    }
 
 
 @router.get("/graph")

@@ -22,16 +22,20 @@ from fastapi.staticfiles import StaticFiles
 from starlette.routing import Route, WebSocketRoute
 
 from services.core.api import router as api_router
+from services.core.core_node import CORE_NODE, CORE_NODE_PATH, CoreNode
 from services.core.gateway import Gateway
 from services.core.openapi import aggregate_openapi
 from services.core.registry import Registry
-from services.core.relay import GATEWAY_PATH, Relays
 from services.core.sessions import serve_session
 from services.core.settings import CoreSettings
+from services.runtime.edge.frames import FrameRejected
+from services.runtime.edge.topic_socket import serve_topic_socket
 from services.runtime.http_client import HttpClient
+from services.runtime.http_errors import install_error_handlers
 from services.runtime.limits import BodySizeLimit
 from services.runtime.origin import SameOriginOnly
 from services.runtime.settings import reachable_host
+from services.runtime.wire import Close
 
 __all__ = ["create_app"]
 
@@ -44,19 +48,19 @@ def create_app(settings: CoreSettings | None = None) -> FastAPI:
     """The core as an ASGI app; ``settings.advertise_url`` (or host/port) is where nodes reach it."""
     settings = settings or CoreSettings()
     registry = Registry()
-    gateway_url = settings.advertise_url or f"http://{reachable_host(settings.host)}:{settings.port}"
+    core_url = settings.advertise_url or f"http://{reachable_host(settings.host)}:{settings.port}"
+    core_node = CoreNode(registry, settings, core_url)
 
     @contextlib.asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
         http = HttpClient()
-        relays = Relays(registry, settings, gateway_url)
+        core_node.start()
         app.state.http = http
-        app.state.relays = relays
-        app.state.gateway = Gateway(registry, relays, settings, http)
+        app.state.gateway = Gateway(registry, core_node, settings, http)
         try:
             yield
         finally:
-            relays.close()
+            core_node.stop()
             await http.aclose()
 
     app = FastAPI(
@@ -73,22 +77,43 @@ def create_app(settings: CoreSettings | None = None) -> FastAPI:
     )
     app.state.registry = registry
     app.state.settings = settings
+    app.state.core_node = core_node
     app.add_middleware(BodySizeLimit, max_bytes=settings.max_message_bytes)
     app.add_middleware(SameOriginOnly)
+    install_error_handlers(app)
     app.include_router(api_router)
 
     @app.get("/health", tags=["core"])
     async def health() -> dict[str, Any]:
         """Liveness of the core."""
-        return {"status": "ok", "node": "/skydeck_core", "pid": os.getpid(), "nodes": len(registry.nodes)}
+        return {"status": "ok", "node": CORE_NODE, "pid": os.getpid(), "nodes": len(registry.nodes)}
 
     @app.websocket("/api/session")
     async def session(websocket: WebSocket) -> None:
         await serve_session(websocket, registry, token=settings.token)
 
-    @app.websocket(GATEWAY_PATH + "/{topic:path}")
-    async def gateway_publication(websocket: WebSocket) -> None:
-        await app.state.gateway.handle_gateway_publication(websocket)
+    def core_topic(websocket: WebSocket) -> Any:
+        endpoint = core_node.endpoint(websocket.scope["path"].removeprefix(CORE_NODE_PATH))
+        if endpoint is None or not endpoint.publishing:
+            raise FrameRejected(Close.POLICY, f"the core does not publish {websocket.url.path}")
+        return endpoint
+
+    @app.get(CORE_NODE_PATH + "/health", include_in_schema=False)
+    async def core_node_health() -> dict[str, Any]:
+        return {"status": "ok", "node": CORE_NODE, "pid": os.getpid()}
+
+    @app.get(CORE_NODE_PATH + "/{topic:path}", include_in_schema=False)
+    async def core_latest(request: Request) -> Response:
+        """The latest message of a topic the core publishes for its clients."""
+        endpoint = core_node.endpoint(request.url.path.removeprefix(CORE_NODE_PATH))
+        if endpoint is None or not endpoint.publishing or endpoint.latest_frame is None:
+            return JSONResponse({"detail": f"the core does not publish {request.url.path}"}, status_code=404)
+        return Response(endpoint.latest_frame, media_type="application/json")
+
+    @app.websocket(CORE_NODE_PATH + "/{topic:path}")
+    async def core_publication(websocket: WebSocket) -> None:
+        """Nodes subscribed to a topic the core publishes (for its clients) link here."""
+        await serve_topic_socket(websocket, core_topic, token=settings.token)
 
     @app.get("/openapi.json", include_in_schema=False)
     async def openapi(request: Request) -> JSONResponse:

@@ -3,7 +3,7 @@
 - ``POST /NAME``: a service call, forwarded to the hosting node (404 unknown, 503 unreachable,
   504 timeout, each with a ``detail`` that says what to do).
 - ``GET /NAME``: the latest message of a topic, from a publisher.
-- ``ws://CORE/NAME``: the topic's stream (see :mod:`services.core.relay`).
+- ``ws://CORE/NAME``: the topic's stream (see :mod:`services.core.gateway_topic`).
 """
 
 from __future__ import annotations
@@ -12,27 +12,14 @@ from fastapi.responses import JSONResponse, Response
 from starlette.requests import Request
 from starlette.websockets import WebSocket
 
+from services.core.core_node import CORE_NODE, CoreNode
+from services.core.gateway_topic import GatewayTopic, declared_type
 from services.core.registry import Registry
-from services.core.relay import GATEWAY_NODE, Relays
 from services.core.settings import CoreSettings
 from services.runtime.auth import NOT_AUTHORISED, presented_token, token_matches
+from services.runtime.edge.topic_socket import serve_topic_socket
 from services.runtime.http_client import HttpClient, HttpError, HttpTimeout
-from services.runtime.outbox import Outbox
-from services.runtime.stream import (
-    CLOSE_BAD_OPTION,
-    FrameRejected,
-    StreamOptions,
-    close_with,
-    parse_frame,
-    serve_stream,
-)
-from shared_models import (
-    InvalidNameError,
-    Message,
-    UnknownInterfaceError,
-    get_interface,
-    resolve_name,
-)
+from shared_models import InvalidNameError, resolve_name
 
 __all__ = ["Gateway"]
 
@@ -46,9 +33,9 @@ def _error(status_code: int, detail: str) -> JSONResponse:
 class Gateway:
     """Routes names to nodes for HTTP and WebSocket clients of the core."""
 
-    def __init__(self, registry: Registry, relays: Relays, settings: CoreSettings, http: HttpClient) -> None:
+    def __init__(self, registry: Registry, core: CoreNode, settings: CoreSettings, http: HttpClient) -> None:
         self._registry = registry
-        self._relays = relays
+        self._core = core
         self._settings = settings
         self._http = http
 
@@ -99,10 +86,10 @@ class Gateway:
         return Response(reply.body, status_code=reply.status, media_type=reply.headers.get("content-type"))
 
     async def _latest(self, name: str) -> Response:
-        publication = self._relays.publications.get(name)
-        if publication is not None and publication.latest_frame is not None:
-            return Response(publication.latest_frame, media_type="application/json")
-        publishers = [p for p in self._registry.publishers(name) if p.node != GATEWAY_NODE]
+        endpoint = self._core.endpoint(name)
+        if endpoint is not None and endpoint.latest_frame is not None:
+            return Response(endpoint.latest_frame, media_type="application/json")
+        publishers = [p for p in self._registry.publishers(name) if p.node != CORE_NODE]
         for publisher in publishers:
             try:
                 reply = await self._http.get(publisher.url.rstrip("/") + name, timeout_s=2.0)
@@ -121,89 +108,10 @@ class Gateway:
     # -- WebSocket ----------------------------------------------------------------------------
 
     async def handle_stream(self, websocket: WebSocket) -> None:
-        """Relay a topic to one client, and publish what it sends (validated) to the topic."""
-        await websocket.accept()
-        try:
-            topic = resolve_name(websocket.scope["path"])
-            options = StreamOptions.from_query(dict(websocket.query_params))
-            declared_type = self._declared_type(websocket.query_params.get("type"))
-        except (InvalidNameError, FrameRejected) as error:
-            code = error.code if isinstance(error, FrameRejected) else CLOSE_BAD_OPTION
-            await close_with(websocket, code, str(error))
-            return
-        may_publish = token_matches(self._settings.token, websocket)
-        published_type: type[Message] | None = None  # set by the first valid frame: then fixed
+        """A topic's stream through the core node (see :mod:`services.core.gateway_topic`)."""
+        await serve_topic_socket(websocket, self._find_topic, token=self._settings.token)
 
-        def on_frame(text: str) -> None:
-            nonlocal published_type
-            if not may_publish:
-                raise FrameRejected(CLOSE_BAD_OPTION, NOT_AUTHORISED)
-            if published_type is not None:
-                self._relays.publish(topic, parse_frame(published_type, published_type.__ros_type__, text))
-                return
-            msg_type = self._topic_type(topic, declared_type)
-            msg = parse_frame(msg_type, msg_type.__ros_type__, text)  # before opening: a bad first frame opens nothing
-            self._relays.open_publication(topic, msg_type)
-            published_type = msg_type
-            self._relays.publish(topic, msg)
-
-        outbox = Outbox(options.outbox_size)
-        initial_frame = self._relays.attach(topic, outbox)
-        try:
-            await serve_stream(websocket, outbox, options=options, initial_frame=initial_frame, on_frame=on_frame)
-        finally:
-            self._relays.detach(topic, outbox)
-            if published_type is not None:
-                self._relays.close_publication(topic)
-
-    async def handle_gateway_publication(self, websocket: WebSocket) -> None:
-        """A node links to a topic the gateway publishes (``/api/gateway/TOPIC``)."""
-        await websocket.accept()
-        topic = websocket.url.path.removeprefix("/api/gateway")
-        publication = self._relays.publications.get(topic)
-        if publication is None:
-            await close_with(websocket, CLOSE_BAD_OPTION, f"the gateway does not publish {topic}")
-            return
-        try:
-            options = StreamOptions.from_query(dict(websocket.query_params))
-        except FrameRejected as rejected:
-            await close_with(websocket, rejected.code, rejected.reason)
-            return
-        outbox = Outbox(options.outbox_size)
-        publication.outboxes.add(outbox)
-        try:
-            await serve_stream(
-                websocket, outbox, options=options, initial_frame=publication.latest_frame, on_frame=None
-            )
-        finally:
-            publication.outboxes.discard(outbox)
-
-    @staticmethod
-    def _declared_type(type_name: str | None) -> type[Message] | None:
-        if not type_name:
-            return None
-        try:
-            declared = get_interface(type_name)
-        except UnknownInterfaceError as error:
-            raise FrameRejected(CLOSE_BAD_OPTION, str(error).splitlines()[0]) from None
-        if not issubclass(declared, Message):
-            raise FrameRejected(CLOSE_BAD_OPTION, f"{type_name} is a service type, not a message type")
-        return declared
-
-    def _topic_type(self, topic: str, declared: type[Message] | None) -> type[Message]:
-        known = self._registry.topic_type(topic)
-        if known is None:
-            if declared is None:
-                raise FrameRejected(
-                    CLOSE_BAD_OPTION, f"{topic} has no type yet: add ?type=pkg/msg/Name to publish a new topic"
-                )
-            return declared
-        if declared is not None and declared.__ros_type__ != known:
-            raise FrameRejected(CLOSE_BAD_OPTION, f"{topic} is {known}, not {declared.__ros_type__}")
-        try:
-            msg_type = get_interface(known)
-        except UnknownInterfaceError:
-            raise FrameRejected(
-                CLOSE_BAD_OPTION, f"the core does not know {known}: publish to the node directly"
-            ) from None
-        return msg_type  # type: ignore[return-value]
+    def _find_topic(self, websocket: WebSocket) -> GatewayTopic:
+        name = resolve_name(websocket.scope["path"])  # InvalidNameError closes with 1008
+        declared = declared_type(websocket.query_params.get("type"))
+        return GatewayTopic(self._core, self._registry, name, declared)

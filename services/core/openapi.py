@@ -7,8 +7,8 @@ import asyncio
 import copy
 from typing import Any
 
+from services.core.core_node import CORE_NODE
 from services.core.registry import NodeRecord, Registry
-from services.core.relay import GATEWAY_NODE
 from services.runtime.http_client import HttpClient, HttpError
 
 __all__ = ["aggregate_openapi"]
@@ -25,7 +25,7 @@ async def aggregate_openapi(core_schema: dict[str, Any], registry: Registry, htt
     schema = copy.deepcopy(core_schema)
     paths: dict[str, Any] = schema.setdefault("paths", {})
     components: dict[str, Any] = schema.setdefault("components", {}).setdefault("schemas", {})
-    records = [r for name, r in sorted(registry.nodes.items()) if name != GATEWAY_NODE]
+    records = [r for name, r in sorted(registry.nodes.items()) if name != CORE_NODE]  # its topics are its clients'
     node_schemas = await asyncio.gather(*(_fetch(http, record) for record in records))
     for record, node_schema in zip(records, node_schemas, strict=True):
         if node_schema is None:

@@ -1,8 +1,10 @@
 """The registry: which nodes are alive, what they publish, subscribe to and serve.
 
-A node is in the registry while its session is open. After every change the registry works out,
-for each session, the publishers of every topic it subscribes to, and sends only what changed:
-subscribers hear about new publishers as soon as they register, without polling.
+A node is in the registry while its session is open (the core's own participant is registered
+in-process). Topics are indexed both ways, so a change costs what it touches: when a node's
+publications change, only the subscribers of the topics that changed are told; when its
+subscriptions change, only it is told about the publishers of its new topics. Subscribers hear
+about new publishers as soon as they register, without polling.
 """
 
 from __future__ import annotations
@@ -12,59 +14,76 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-from services.runtime.protocol import Entity, NodeDescription, PublisherAddress, PublishersFrame
+from services.runtime.protocol import (
+    CoreFrameModel,
+    Entity,
+    NodeDescription,
+    PublisherAddress,
+    PublishersFrame,
+)
 
-__all__ = ["NodeRecord", "Registry"]
+__all__ = ["Inbox", "NodeRecord", "Registry"]
 
-# How a session receives frames from the core (the session handler queues them).
-SendFrame = Callable[[str], None]
+Inbox = Callable[[CoreFrameModel], None]
+"""How a registered participant receives frames from the core (a session queues them)."""
 
 
 @dataclass
 class NodeRecord:
-    """One live node and its session."""
+    """One live node and how to reach its session."""
 
     description: NodeDescription
-    send: SendFrame
+    inbox: Inbox
     # Publishing rates from the node's cumulative counts: topic -> (count, monotonic time, rate).
     counters: dict[str, tuple[int, float, float | None]] = field(default_factory=dict)
-    # What this session was last told about each subscribed topic.
+    # What this node was last told about each topic it subscribes to.
     told: dict[str, tuple[tuple[str, str], ...]] = field(default_factory=dict)
 
 
+def _names(entities: list[Entity]) -> set[str]:
+    return {entity.name for entity in entities}
+
+
 class Registry:
-    """Live nodes by name, the topic and service views derived from them, and change fan-out."""
+    """Live nodes by name, topic indexes derived from them, and change fan-out."""
 
     def __init__(self) -> None:
         self.nodes: dict[str, NodeRecord] = {}
-        # Called with a topic name whenever its publishers may have changed (the gateway's relays).
-        self.topic_listeners: list[Callable[[str], None]] = []
+        # topic -> names of the nodes publishing / subscribing to it (insertion-ordered)
+        self._publishers: dict[str, dict[str, None]] = {}
+        self._subscribers: dict[str, dict[str, None]] = {}
 
     # -- changes ------------------------------------------------------------------------------
 
-    def register(self, description: NodeDescription, send: SendFrame) -> NodeRecord | None:
+    def register(self, description: NodeDescription, inbox: Inbox) -> NodeRecord | None:
         """Add or replace a node; returns the record it replaced (another session), if any."""
         previous = self.nodes.get(description.name)
-        self.nodes[description.name] = NodeRecord(description, send)
-        self._changed(previous.description if previous else None, description)
-        return previous if previous is not None and previous.send is not send else None
+        if previous is not None:
+            self._unindex(previous.description)
+        record = self.nodes[description.name] = NodeRecord(description, inbox)
+        self._index(description)
+        self._changed(previous.description if previous else None, record)
+        return previous if previous is not None and previous.inbox != inbox else None
 
-    def update(self, description: NodeDescription, send: SendFrame) -> None:
+    def update(self, description: NodeDescription, inbox: Inbox) -> None:
         """A registered node's entities changed."""
         record = self.nodes.get(description.name)
-        if record is None or record.send is not send:
+        if record is None or record.inbox != inbox:
             return
         previous = record.description
+        self._unindex(previous)
         record.description = description
-        self._changed(previous, description)
+        self._index(description)
+        self._changed(previous, record)
 
-    def unregister(self, name: str, send: SendFrame) -> None:
+    def unregister(self, name: str, inbox: Inbox) -> None:
         """A session ended: remove its node (unless a newer session took the name)."""
         record = self.nodes.get(name)
-        if record is None or record.send is not send:
+        if record is None or record.inbox != inbox:
             return
         del self.nodes[name]
-        self._changed(record.description, None)
+        self._unindex(record.description)
+        self._tell_subscribers(_names(record.description.publications))
 
     def record_stats(self, name: str, published: dict[str, int]) -> None:
         """Turn a node's cumulative publish counts into rates."""
@@ -79,48 +98,80 @@ class Registry:
                 rate = (count - last[0]) / (now - last[1])
             record.counters[topic] = (count, now, rate)
 
-    def _changed(self, before: NodeDescription | None, after: NodeDescription | None) -> None:
-        topics: set[str] = set()
-        for description in (before, after):
-            if description is not None:
-                topics.update(e.name for e in description.publications)
-        for record in self.nodes.values():
-            self._tell_publishers(record)
-        for topic in topics:
-            for listener in self.topic_listeners:
-                listener(topic)
+    def _index(self, description: NodeDescription) -> None:
+        for entity in description.publications:
+            self._publishers.setdefault(entity.name, {})[description.name] = None
+        for entity in description.subscriptions:
+            self._subscribers.setdefault(entity.name, {})[description.name] = None
 
-    def _tell_publishers(self, record: NodeRecord) -> None:
-        for entity in record.description.subscriptions:
-            addresses = self.publishers(entity.name)
-            summary = tuple((a.node, a.url) for a in addresses)
-            if record.told.get(entity.name) != summary:
-                record.told[entity.name] = summary
-                record.send(PublishersFrame(topic=entity.name, publishers=addresses).model_dump_json())
+    def _unindex(self, description: NodeDescription) -> None:
+        for index, entities in ((self._publishers, description.publications), (self._subscribers, description.subscriptions)):
+            for entity in entities:
+                names = index.get(entity.name)
+                if names is not None:
+                    names.pop(description.name, None)
+                    if not names:
+                        del index[entity.name]
+
+    def _changed(self, before: NodeDescription | None, record: NodeRecord) -> None:
+        after = record.description
+        published_before = _names(before.publications) if before else set()
+        published_after = _names(after.publications)
+        moved = before is not None and before.url != after.url
+        self._tell_subscribers((published_before ^ published_after) | (published_after if moved else set()))
+        # The node itself: publishers of each topic it subscribes to (only what changed is sent).
+        subscribed = _names(after.subscriptions)
+        for topic in list(record.told):
+            if topic not in subscribed:
+                del record.told[topic]
+        for topic in subscribed:
+            self._tell(record, topic)
+
+    def _tell_subscribers(self, topics: set[str]) -> None:
+        for topic in topics:
+            for name in list(self._subscribers.get(topic, ())):
+                self._tell(self.nodes[name], topic)
+
+    def _tell(self, record: NodeRecord, topic: str) -> None:
+        addresses = self.publishers(topic)
+        summary = tuple((a.node, a.url) for a in addresses)
+        if record.told.get(topic) != summary:
+            record.told[topic] = summary
+            record.inbox(PublishersFrame(topic=topic, publishers=addresses))
 
     # -- queries ------------------------------------------------------------------------------
 
     def publishers(self, topic: str) -> list[PublisherAddress]:
         """Every live publisher of ``topic``, in registration order."""
         return [
-            PublisherAddress(node=name, url=record.description.url)
-            for name, record in self.nodes.items()
-            if any(e.name == topic for e in record.description.publications)
+            PublisherAddress(node=name, url=self.nodes[name].description.url)
+            for name in self._publishers.get(topic, ())
+        ]
+
+    def subscribers(self, topic: str) -> list[str]:
+        """The names of the nodes subscribed to ``topic``."""
+        return list(self._subscribers.get(topic, ()))
+
+    def _entities(self, topic: str, role: str) -> list[Entity]:
+        index = self._publishers if role == "publications" else self._subscribers
+        return [
+            entity
+            for name in index.get(topic, ())
+            for entity in getattr(self.nodes[name].description, role)
+            if entity.name == topic
         ]
 
     def topic_type(self, topic: str) -> str | None:
         """The type of ``topic`` as its publishers or subscribers declare it, if any does."""
-        for record in self.nodes.values():
-            for entity in (*record.description.publications, *record.description.subscriptions):
-                if entity.name == topic:
+        for role in ("publications", "subscriptions"):
+            for entity in self._entities(topic, role):
+                if entity.type:  # the core's own subscriptions may not know the type
                     return entity.type
         return None
 
     def is_latched(self, topic: str) -> bool:
         """Whether any publisher of ``topic`` latches it."""
-        return any(
-            e.name == topic and e.latched for r in self.nodes.values() for e in r.description.publications
-        )
+        return any(entity.latched for entity in self._entities(topic, "publications"))
 
     def service(self, name: str) -> tuple[Entity, NodeRecord] | None:
         """The service called ``name`` and the node hosting it."""
@@ -151,6 +202,7 @@ class Registry:
                         entity.name,
                         {"name": entity.name, "type": entity.type, "publishers": [], "subscribers": [], "rate_hz": None},
                     )
+                    topic["type"] = topic["type"] or entity.type
                     topic[role].append(name)
             for topic_name, (_, _, rate) in record.counters.items():
                 if topic_name in topics and rate is not None:

@@ -12,7 +12,9 @@ from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from services.core.registry import Registry
 from services.runtime.auth import token_matches
+from services.runtime.edge.frames import close_with
 from services.runtime.protocol import (
+    CoreFrameModel,
     RegisteredFrame,
     RegisterFrame,
     RejectedFrame,
@@ -20,21 +22,12 @@ from services.runtime.protocol import (
     UpdateFrame,
     node_frames,
 )
-from services.runtime.stream import (
-    CLOSE_BAD_OPTION,
-    CLOSE_INVALID_FRAME,
-    CLOSE_UNSUPPORTED,
-    close_with,
-)
+from services.runtime.wire import Close
 
 __all__ = ["serve_session"]
 
 logger = logging.getLogger("skydeck.core")
 
-# A private close code: this session's node name was taken by a newer node.
-CLOSE_REPLACED = 4000
-# How a rejection frame starts (its `op` comes first), taken from the model, not written again.
-_REJECTED = RejectedFrame(reason="").model_dump_json().split(",")[0]
 NOT_AUTHORISED_SESSION = "registering needs the core's token (SKYDECK_TOKEN): Authorization: Bearer TOKEN"
 # A node with the wrong token retries twice a second: say so once in a while, not every time.
 _REFUSAL_LOG_EVERY_S = 10.0
@@ -50,9 +43,9 @@ async def serve_session(websocket: WebSocket, registry: Registry, *, token: str 
     await websocket.accept()
     if not token_matches(token, websocket):
         _log_refusal(websocket)
-        await close_with(websocket, CLOSE_BAD_OPTION, NOT_AUTHORISED_SESSION)
+        await close_with(websocket, Close.POLICY, NOT_AUTHORISED_SESSION)
         return
-    outgoing: asyncio.Queue[str] = asyncio.Queue()
+    outgoing: asyncio.Queue[CoreFrameModel] = asyncio.Queue()
     writer = asyncio.create_task(_write(websocket, outgoing))
     name = None
     send = outgoing.put_nowait
@@ -60,25 +53,25 @@ async def serve_session(websocket: WebSocket, registry: Registry, *, token: str 
         try:
             first = node_frames.validate_json(await websocket.receive_text())
         except (ValidationError, KeyError, RuntimeError) as error:
-            await close_with(websocket, CLOSE_INVALID_FRAME, f"expected a register frame: {error}")
+            await close_with(websocket, Close.INVALID_FRAME, f"expected a register frame: {error}")
             return
         if not isinstance(first, RegisterFrame):
-            await close_with(websocket, CLOSE_INVALID_FRAME, "the first frame must be a register frame")
+            await close_with(websocket, Close.INVALID_FRAME, "the first frame must be a register frame")
             return
         name = first.node.name
-        outgoing.put_nowait(RegisteredFrame().model_dump_json())
+        outgoing.put_nowait(RegisteredFrame())
         replaced = registry.register(first.node, send)
         if replaced is not None:
-            replaced.send(RejectedFrame(reason=f"a newer node took the name {name} (pid {first.node.pid})").model_dump_json())
+            replaced.inbox(RejectedFrame(reason=f"a newer node took the name {name} (pid {first.node.pid})"))
         logger.info("node %s registered from %s (pid %d)", name, first.node.url, first.node.pid)
         while True:
             try:
                 frame = node_frames.validate_json(await websocket.receive_text())
             except ValidationError as error:
-                await close_with(websocket, CLOSE_INVALID_FRAME, f"not a session frame: {error.errors()[0]['msg']}")
+                await close_with(websocket, Close.INVALID_FRAME, f"not a session frame: {error.errors()[0]['msg']}")
                 return
             except KeyError:  # Starlette's receive_text() on a binary frame
-                await close_with(websocket, CLOSE_UNSUPPORTED, "session frames are JSON text, not binary")
+                await close_with(websocket, Close.UNSUPPORTED, "session frames are JSON text, not binary")
                 return
             if isinstance(frame, UpdateFrame) and frame.node.name == name:
                 registry.update(frame.node, send)
@@ -105,12 +98,12 @@ def _log_refusal(websocket: WebSocket) -> None:
         logger.warning("refused a node session from %s: no token or the wrong one (is its SKYDECK_TOKEN set?)", where)
 
 
-async def _write(websocket: WebSocket, outgoing: asyncio.Queue[str]) -> None:
+async def _write(websocket: WebSocket, outgoing: asyncio.Queue[CoreFrameModel]) -> None:
     with contextlib.suppress(WebSocketDisconnect, RuntimeError, OSError):
         while True:
             frame = await outgoing.get()
-            await websocket.send_text(frame)
+            await websocket.send_text(frame.model_dump_json())
             # A rejection ends the session: the node's name now belongs to a newer node.
-            if frame.startswith(_REJECTED):
-                await close_with(websocket, CLOSE_REPLACED, "replaced by a newer node with the same name")
+            if isinstance(frame, RejectedFrame):
+                await close_with(websocket, Close.REPLACED, "replaced by a newer node with the same name")
                 return

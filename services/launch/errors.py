@@ -8,10 +8,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from shared_models.errors import SkydeckError
+
 __all__ = ["LaunchError", "LaunchFileError"]
 
 
-class LaunchError(Exception):
+class LaunchError(SkydeckError):
     """A launch cannot go ahead: bad options, a port in use, or a node that never became ready.
 
     ``node`` names the node at fault (if one is), ``exit_code`` is its exit status if it exited,

@@ -35,7 +35,7 @@ from pydantic import (
 )
 from pydantic_core import ErrorDetails, PydanticCustomError
 
-from services.cli.run import BUILTIN_NODES
+from services.builtin_nodes import BUILTIN_NODES
 from services.launch.errors import LaunchFileError
 
 __all__ = [

@@ -17,9 +17,7 @@ import asyncio
 import contextlib
 import enum
 import os
-import shlex
 import signal
-import subprocess
 import sys
 import time
 from collections import deque
@@ -28,10 +26,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TextIO
 
+from services.launch.child_process import ChildProcess, Health, describe_exit, signal_group, spawn
 from services.launch.errors import LaunchError
 from services.launch.plan import LaunchOptions, NodePlan, core_url, default_command, plan_launch
 from services.launch.spec import LaunchSpec, default_launch_file, load_launch_file
-from services.runtime.http_client import HttpClient, HttpError
+from services.runtime.http_client import HttpClient
 from services.runtime.ports import port_is_free
 
 __all__ = ["CommandFor", "NodeState", "NodeStatus", "Supervisor", "run_launch"]
@@ -39,9 +38,6 @@ __all__ = ["CommandFor", "NodeState", "NodeStatus", "Supervisor", "run_launch"]
 CommandFor = Callable[[NodePlan], Sequence[str]]
 """Turns a node's plan into the argv that starts it (``default_command`` runs the skydeck CLI)."""
 
-# -- readiness ----------------------------------------------------------------------------------
-POLL_INTERVAL_S = 0.05
-_HEALTH_REQUEST_TIMEOUT_S = 1.0
 # -- respawn ------------------------------------------------------------------------------------
 BACKOFF_FIRST_S = 0.5
 BACKOFF_MAX_S = 8.0
@@ -49,10 +45,8 @@ BACKOFF_RESET_AFTER_S = 30.0
 """A node that ran this long before dying is respawned after the first backoff again."""
 # -- stopping -----------------------------------------------------------------------------------
 STOP_TIMEOUT_S = 5.0
-_DRAIN_TIMEOUT_S = 1.0
 # -- output -------------------------------------------------------------------------------------
 _STDERR_TAIL_LINES = 20
-_LINE_LIMIT_BYTES = 2**20  # longer lines are forwarded in pieces
 
 
 class NodeState(enum.Enum):
@@ -79,68 +73,13 @@ class NodeStatus:
     exit_code: int | None
 
 
-class _Outcome(enum.Enum):
-    READY = "ready"
-    EXITED = "exited"
-    TIMEOUT = "timeout"
-    STOPPING = "stopping"
-
-
-class _NodeProcess(asyncio.SubprocessProtocol):
-    """One run of a node: splits its output into lines and says when it has exited.
-
-    Exit is reported as soon as the process ends, even while a grandchild still holds its pipes
-    (``asyncio.subprocess.Process.wait`` waits for the pipes too on Python 3.11).
-    """
-
-    def __init__(self, on_line: Callable[[str, bool], None]) -> None:
-        loop = asyncio.get_running_loop()
-        self.exited: asyncio.Future[int] = loop.create_future()
-        self.finished: asyncio.Future[None] = loop.create_future()  # exited and pipes closed
-        self.transport: asyncio.SubprocessTransport | None = None
-        self._on_line = on_line
-        self._buffers = {1: bytearray(), 2: bytearray()}
-
-    def connection_made(self, transport: asyncio.BaseTransport) -> None:
-        self.transport = transport  # type: ignore[assignment]
-
-    def pipe_data_received(self, fd: int, data: bytes | bytearray) -> None:
-        buffer = self._buffers[fd]
-        buffer += data
-        start = 0
-        while (end := buffer.find(b"\n", start)) >= 0:
-            self._emit(fd, buffer[start:end])
-            start = end + 1
-        del buffer[:start]
-        if len(buffer) > _LINE_LIMIT_BYTES:
-            self._emit(fd, buffer)
-            buffer.clear()
-
-    def pipe_connection_lost(self, fd: int, exc: Exception | None) -> None:
-        if buffer := self._buffers.get(fd):
-            self._emit(fd, buffer)
-            buffer.clear()
-
-    def process_exited(self) -> None:
-        code = self.transport.get_returncode() if self.transport else None
-        if not self.exited.done():
-            self.exited.set_result(-1 if code is None else code)
-
-    def connection_lost(self, exc: Exception | None) -> None:
-        if not self.finished.done():
-            self.finished.set_result(None)
-
-    def _emit(self, fd: int, raw: bytes | bytearray) -> None:
-        self._on_line(raw.decode("utf-8", errors="replace").rstrip("\r"), fd == 2)
-
-
 class _Child:
     """The supervisor's record of one node and its current process."""
 
     def __init__(self, plan: NodePlan) -> None:
         self.plan = plan
         self.state = NodeState.WAITING
-        self.process: _NodeProcess | None = None
+        self.process: ChildProcess | None = None
         self.pid: int | None = None
         self.watch: asyncio.Task[None] | None = None
         self.started_at = 0.0
@@ -156,7 +95,7 @@ class _Child:
 
     @property
     def running(self) -> bool:
-        return self.process is not None and not self.process.exited.done()
+        return self.process is not None and self.process.running
 
 
 class Supervisor:
@@ -327,19 +266,19 @@ class Supervisor:
         plan = child.plan
         await self._spawn(child)
         outcome = await self._wait_healthy(child)
-        if outcome is _Outcome.READY:
+        if outcome is Health.READY:
             self._ready(child)
             child.watch = asyncio.create_task(self._watch(child), name=f"launch-watch-{plan.name}")
-        elif outcome is _Outcome.EXITED:
+        elif outcome is Health.EXITED:
             code = await self._reap(child)
             last = f": {child.stderr_tail[-1]}" if child.stderr_tail else ""
             raise LaunchError(
-                f"{plan.name} exited with {_describe_exit(code)} before it was ready{last}",
+                f"{plan.name} exited with {describe_exit(code)} before it was ready{last}",
                 node=plan.name,
                 exit_code=code,
                 stderr_tail=tuple(child.stderr_tail),
             )
-        elif outcome is _Outcome.TIMEOUT:
+        elif outcome is Health.TIMEOUT:
             raise LaunchError(
                 f"{plan.name} (pid {child.pid}) did not answer {plan.url}/health within "
                 f"{plan.ready_timeout_s:g} s; is it serving on port {plan.port}?",
@@ -358,47 +297,22 @@ class Supervisor:
                 child.stderr_tail.append(text)
             self._write(prefix + text)
 
-        loop = asyncio.get_running_loop()
-        try:
-            transport, process = await loop.subprocess_exec(
-                lambda: _NodeProcess(on_line),
-                *argv,
-                stdin=subprocess.DEVNULL,
-                stdout=subprocess.PIPE,
-                stderr=subprocess.PIPE,
-                env=env,
-                start_new_session=True,  # its own process group: killed as a whole, deaf to Ctrl-C
-            )
-        except OSError as error:
-            raise LaunchError(
-                f"cannot start {plan.name} ({shlex.join(argv)}): {error}", node=plan.name
-            ) from None
+        process = await spawn(argv, env, on_line, what=plan.name)
         child.process = process
-        child.pid = transport.get_pid()
+        child.pid = process.pid
         child.started_at = time.monotonic()
         child.starts += 1
         child.state = NodeState.STARTING
         child.stderr_tail.clear()
         self._notify()
 
-    async def _wait_healthy(self, child: _Child) -> _Outcome:
+    async def _wait_healthy(self, child: _Child) -> Health:
         """Poll /health until 200, the process exits, the deadline passes or a stop is asked."""
-        if self._http is None or child.exited is None:
+        if self._http is None or child.process is None:
             raise LaunchError("internal: node polled before it was started")
-        url = f"{child.plan.url}/health"
-        deadline = time.monotonic() + child.plan.ready_timeout_s
-        while True:
-            if child.exited.done():
-                return _Outcome.EXITED
-            if self._stopping:
-                return _Outcome.STOPPING
-            with contextlib.suppress(HttpError):
-                response = await self._http.get(url, timeout_s=_HEALTH_REQUEST_TIMEOUT_S)
-                if response.status == 200:
-                    return _Outcome.READY
-            if time.monotonic() >= deadline:
-                return _Outcome.TIMEOUT
-            await asyncio.wait({child.exited}, timeout=POLL_INTERVAL_S)
+        return await child.process.wait_healthy(
+            self._http, f"{child.plan.url}/health", child.plan.ready_timeout_s, lambda: self._stopping
+        )
 
     def _ready(self, child: _Child) -> None:
         child.state = NodeState.READY
@@ -426,14 +340,14 @@ class Supervisor:
             if not plan.respawn:
                 child.state = NodeState.EXITED
                 self._say(
-                    f"{plan.name} exited with {_describe_exit(code)}; not respawned (respawn: false)"
+                    f"{plan.name} exited with {describe_exit(code)}; not respawned (respawn: false)"
                 )
                 self._notify()
                 return
             if ran_s >= BACKOFF_RESET_AFTER_S:
                 child.backoff_s = BACKOFF_FIRST_S
             self._say(
-                f"{plan.name} exited with {_describe_exit(code)} after {ran_s:.1f} s; "
+                f"{plan.name} exited with {describe_exit(code)} after {ran_s:.1f} s; "
                 f"respawning in {child.backoff_s:g} s"
             )
             if not await self._respawn(child):
@@ -456,14 +370,14 @@ class Supervisor:
                 self._say(f"{error}; trying again in {child.backoff_s:g} s")
                 continue
             outcome = await self._wait_healthy(child)
-            if outcome is _Outcome.READY:
+            if outcome is Health.READY:
                 self._ready(child)
                 return True
-            if outcome is _Outcome.STOPPING:
+            if outcome is Health.STOPPING:
                 return False
-            if outcome is _Outcome.EXITED:
+            if outcome is Health.EXITED:
                 code = await self._reap(child)
-                why = f"exited with {_describe_exit(code)} before it was ready"
+                why = f"exited with {describe_exit(code)} before it was ready"
             else:
                 await self._terminate(child)
                 why = f"did not answer /health within {plan.ready_timeout_s:g} s"
@@ -473,42 +387,33 @@ class Supervisor:
 
     async def _terminate(self, child: _Child, *, report: bool = False) -> None:
         """SIGTERM the node's process group, SIGKILL it after the stop timeout; then reap."""
-        if child.pid is None or child.exited is None:
+        process = child.process
+        if process is None:
             return
-        if child.running:
-            _signal_group(child.pid, signal.SIGTERM)
-            await asyncio.wait({child.exited}, timeout=self._stop_timeout_s)
-            if child.running:
-                self._say(
-                    f"{child.plan.name} did not stop within {self._stop_timeout_s:g} s; killing it"
-                )
-                _signal_group(child.pid, signal.SIGKILL)
-                await child.exited
-            if report:
-                self._say(f"{child.plan.name} stopped ({_describe_exit(child.exited.result())})")
-        await self._reap(child)
+        was_running = process.running
+        code = await process.terminate(
+            self._stop_timeout_s,
+            on_kill=lambda: self._say(
+                f"{child.plan.name} did not stop within {self._stop_timeout_s:g} s; killing it"
+            ),
+        )
+        child.exit_code = code
+        if was_running and report:
+            self._say(f"{child.plan.name} stopped ({describe_exit(code)})")
 
     async def _reap(self, child: _Child) -> int:
-        """The exit code of the node's finished process, after killing what is left of its group
-        (grandchildren) and forwarding the rest of its output."""
-        process = child.process
-        if process is None or child.pid is None:
+        """The exit code of the node's finished process (see ChildProcess.reap)."""
+        if child.process is None:
             raise LaunchError("internal: reaping a node that never started")
-        code = await process.exited
-        child.exit_code = code
-        _signal_group(child.pid, signal.SIGKILL)
-        # Its last output, unless something outside its group still holds the pipes.
-        await asyncio.wait({process.finished}, timeout=_DRAIN_TIMEOUT_S)
-        if process.transport is not None:
-            process.transport.close()
-        return code
+        child.exit_code = await child.process.reap()
+        return child.exit_code
 
     def _on_signal(self, sig: signal.Signals) -> None:
         if self._stopping:
             self._say(f"{sig.name} again: killing every node now")
             for child in self._children.values():
                 if child.running and child.pid is not None:
-                    _signal_group(child.pid, signal.SIGKILL)
+                    signal_group(child.pid, signal.SIGKILL)
             return
         self._say(f"{sig.name}: stopping")
         self.request_stop()
@@ -553,18 +458,3 @@ def run_launch(
     """
     spec = load_launch_file(default_launch_file() if path is None else path)
     return asyncio.run(Supervisor(spec, options, out=out).run())
-
-
-def _signal_group(pgid: int, sig: signal.Signals) -> None:
-    # The group's id is the leader's pid (start_new_session). The id stays reserved while any
-    # member lives, so this cannot hit an unrelated process; an empty group is simply gone.
-    with contextlib.suppress(ProcessLookupError, PermissionError):
-        os.killpg(pgid, sig)
-
-
-def _describe_exit(code: int) -> str:
-    if code < 0:
-        with contextlib.suppress(ValueError):
-            return f"signal {signal.Signals(-code).name}"
-        return f"signal {-code}"
-    return f"exit code {code}"

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from services.runtime.lazy import lazy_exports
+from shared_models.lazy import lazy_exports
 
 if TYPE_CHECKING:
     from services.runtime.client import Client

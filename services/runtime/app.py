@@ -8,58 +8,48 @@ from __future__ import annotations
 
 import inspect
 import logging
-from collections.abc import Awaitable, Callable
-from typing import TYPE_CHECKING, Annotated, Any
+from collections.abc import Callable
+from typing import Annotated, Any
 
 from fastapi import Body, FastAPI
-from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse, Response
 from starlette.requests import Request as HTTPRequest
 from starlette.websockets import WebSocket
 
 from services.runtime.auth import NOT_AUTHORISED, token_matches
+from services.runtime.edge.topic_socket import serve_topic_socket
 from services.runtime.endpoint import TopicEndpoint
+from services.runtime.http_errors import install_error_handlers
 from services.runtime.limits import BodySizeLimit
 from services.runtime.origin import SameOriginOnly
-from services.runtime.outbox import Outbox
-from services.runtime.service import Service, ServiceHandlerError
-from services.runtime.stream import (
-    CLOSE_BAD_OPTION,
-    FrameRejected,
-    StreamOptions,
-    close_with,
-    parse_frame,
-    serve_stream,
-)
-from services.runtime.validation import request_validation_handler
+from services.runtime.service import Service
 from shared_models import Message
-
-if TYPE_CHECKING:
-    from services.runtime.node import Node
 
 __all__ = ["NodeApp"]
 
 
-
 class NodeApp:
-    """The FastAPI application of one node."""
+    """The FastAPI application of one participant (a node's, or the core's own)."""
 
-    def __init__(self, node: Node) -> None:
-        self._node = node
-        self._logger = logging.getLogger(f"skydeck.node.{node.get_name().lstrip('/')}")
+    def __init__(
+        self, name: str, *, token: str, max_message_bytes: int, health: Callable[[], dict[str, Any]]
+    ) -> None:
+        self._token = token
+        self._logger = logging.getLogger(f"skydeck.node.{name.lstrip('/')}")
         self.fastapi = FastAPI(
-            title=f"Skydeck node {node.get_name()}",
+            title=f"Skydeck node {name}",
             description="Topics (GET the latest, WebSocket for the stream) and services (POST) of this node.",
             version="0.1.0",
             redoc_url=None,
         )
-        self.fastapi.add_middleware(BodySizeLimit, max_bytes=node.settings.max_message_bytes)
+        self.fastapi.add_middleware(BodySizeLimit, max_bytes=max_message_bytes)
         self.fastapi.add_middleware(SameOriginOnly)
-        self.fastapi.add_exception_handler(RequestValidationError, request_validation_handler)
-        self.fastapi.add_api_route("/health", self._health, methods=["GET"], tags=["node"], summary="Liveness")
+        install_error_handlers(self.fastapi)
 
-    async def _health(self) -> dict[str, Any]:
-        return {"status": "ok", "node": self._node.get_name(), "pid": self._node.pid}
+        async def _health() -> dict[str, Any]:
+            return health()
+
+        self.fastapi.add_api_route("/health", _health, methods=["GET"], tags=["node"], summary="Liveness")
 
     # -- topics -------------------------------------------------------------------------------
 
@@ -73,6 +63,9 @@ class NodeApp:
                 )
             return Response(endpoint.latest_frame, media_type="application/json")
 
+        async def stream(websocket: WebSocket) -> None:
+            await serve_topic_socket(websocket, lambda _: endpoint, token=self._token)
+
         self.fastapi.add_api_route(
             endpoint.name,
             latest,
@@ -83,41 +76,8 @@ class NodeApp:
             responses={200: {"model": endpoint.msg_type}, 404: {"description": "No message yet"}},
             name=f"topic:{endpoint.name}",
         )
-        self.fastapi.add_api_websocket_route(endpoint.name, self._stream_handler(endpoint))
+        self.fastapi.add_api_websocket_route(endpoint.name, stream)
         self.fastapi.openapi_schema = None
-
-    def _stream_handler(self, endpoint: TopicEndpoint) -> Callable[[WebSocket], Awaitable[None]]:
-        node = self._node
-
-        async def stream(websocket: WebSocket) -> None:
-            await websocket.accept()
-            try:
-                options = StreamOptions.from_query(dict(websocket.query_params))
-            except FrameRejected as rejected:
-                await close_with(websocket, rejected.code, rejected.reason)
-                return
-            may_publish = token_matches(node.settings.token, websocket)
-
-            def on_frame(text: str) -> None:
-                if not may_publish:
-                    raise FrameRejected(CLOSE_BAD_OPTION, NOT_AUTHORISED)
-                msg = parse_frame(endpoint.msg_type, endpoint.type_name, text)
-                node._inject(endpoint, msg)
-
-            outbox = Outbox(options.outbox_size)
-            endpoint.outboxes.add(outbox)
-            try:
-                await serve_stream(
-                    websocket,
-                    outbox,
-                    options=options,
-                    initial_frame=endpoint.latest_frame if endpoint.latched else None,
-                    on_frame=on_frame,
-                )
-            finally:
-                endpoint.outboxes.discard(outbox)
-
-        return stream
 
     # -- services -----------------------------------------------------------------------------
 
@@ -125,16 +85,13 @@ class NodeApp:
         """Serve ``service`` as a POST at its name, typed by its Request and Response."""
         request_type: type[Message] = service.srv_type.Request
         response_type: type[Message] = service.srv_type.Response
-        node = self._node
         logger = self._logger
 
         async def call(http_request: Any, request: Any = None) -> Any:
-            if not token_matches(node.settings.token, http_request):
+            if not token_matches(self._token, http_request):
                 return JSONResponse({"detail": NOT_AUTHORISED}, status_code=401)
-            try:
-                return await service.handle(request if request is not None else request_type(), logger)
-            except ServiceHandlerError as error:
-                return JSONResponse({"detail": str(error)}, status_code=500)
+            # A ServiceHandlerError (the handler raised) answers 500 through install_error_handlers.
+            return await service.handle(request if request is not None else request_type(), logger)
 
         # FastAPI reads types from the signature: give it this service's own request model, with
         # an empty body meaning the default request (`rosservice call /x` with no arguments).

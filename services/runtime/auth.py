@@ -13,6 +13,8 @@ import re
 
 from starlette.requests import HTTPConnection
 
+from services.runtime.wire import TOKEN_QUERY_PARAMETER
+
 __all__ = [
     "NOT_AUTHORISED",
     "TOKEN_QUERY_PARAMETER",
@@ -22,7 +24,6 @@ __all__ = [
     "token_matches",
 ]
 
-TOKEN_QUERY_PARAMETER = "token"
 NOT_AUTHORISED = "publishing and service calls need the token: Authorization: Bearer TOKEN or ?token=TOKEN"
 
 

@@ -1,14 +1,24 @@
-"""The hub of one topic inside a node: what the node publishes and receives on that topic.
+"""One topic inside one participant (a node, or the core): the hub its frames pass through.
 
-Publishing serialises a message once; the frame then goes to every remote reader's outbox and
-the message object to every local subscription, without copying.
+What the participant publishes is serialised once; the frame goes to every reader's outbox and
+the message object to every local subscription, without copying. Frames from remote
+publishers (links) are parsed only when a local subscription needs the message, and go on as
+received to the taps (the core's gateway readers, who read everything on the topic).
+
+As a :class:`~services.runtime.edge.TopicPort`, the endpoint is what a socket on the node's
+own ``ws://NODE/TOPIC`` talks to.
 """
 
 from __future__ import annotations
 
+import logging
 from typing import TYPE_CHECKING
 
-from services.runtime.outbox import Outbox
+from pydantic import ValidationError
+
+from services.runtime.edge.frames import is_complete, parse_frame
+from services.runtime.edge.outbox import Outbox
+from services.runtime.edge.topic_socket import TopicConnection
 from shared_models import Message
 
 if TYPE_CHECKING:
@@ -16,35 +26,97 @@ if TYPE_CHECKING:
 
 __all__ = ["TopicEndpoint"]
 
+logger = logging.getLogger("skydeck.runtime")
+
 
 class TopicEndpoint:
-    """One topic in one node: its type, latest message, remote readers and local subscriptions."""
+    """One topic in one participant: its type, latest message, readers and subscriptions.
 
-    def __init__(self, name: str, msg_type: type[Message]) -> None:
+    ``msg_type`` is None only on the core, for a topic its clients read whose type it does not
+    know: such frames are forwarded without being parsed.
+    """
+
+    def __init__(self, name: str, msg_type: type[Message] | None, type_name: str = "") -> None:
         self.name = name
         self.msg_type = msg_type
-        self.type_name = msg_type.__ros_type__
+        self.type_name = msg_type.__ros_type__ if msg_type is not None else type_name
         self.latched = False
-        self.publishing = False  # the node has a publisher (or a client published through it)
+        self.publishing = False  # the participant publishes it (a publisher, or a client through it)
         self.latest_msg: Message | None = None
         self.latest_frame: str | None = None
         self.published_count = 0
-        self.outboxes: set[Outbox] = set()
+        self.outboxes: set[Outbox] = set()  # readers of what this participant publishes
+        self.taps: set[Outbox] = set()  # readers of everything on the topic (the core's clients)
         self.subscriptions: list[Subscription] = []
 
-    def dispatch(self, msg: Message, frame: str) -> None:
-        """Deliver a message this node publishes: remote readers and local subscriptions."""
+    @property
+    def subscribed(self) -> bool:
+        """Whether the participant wants this topic from its remote publishers."""
+        return bool(self.subscriptions or self.taps)
+
+    # -- messages ---------------------------------------------------------------------------
+
+    def dispatch(self, msg: Message, frame: str, sender: Outbox | None = None) -> None:
+        """Deliver a message this participant publishes: readers, taps, local subscriptions."""
         self.latest_msg = msg
         self.latest_frame = frame
         self.published_count += 1
         for outbox in self.outboxes:
-            outbox.push(frame)
+            if outbox is not sender:
+                outbox.push(frame)
+        for tap in self.taps:
+            if tap is not sender:
+                tap.push(frame)
         for subscription in self.subscriptions:
             subscription.enqueue(msg)
 
-    def receive(self, msg: Message, frame: str) -> None:
-        """Deliver a message received from a remote publisher to local subscriptions only."""
+    def receive(self, msg: Message, frame: str, sender: Outbox | None = None) -> None:
+        """Deliver a message from elsewhere (a client of this node) to taps and subscriptions."""
         self.latest_msg = msg
         self.latest_frame = frame
+        for tap in self.taps:
+            if tap is not sender:
+                tap.push(frame)
         for subscription in self.subscriptions:
             subscription.receive(msg)
+
+    def receive_link_frame(self, frame: str) -> None:
+        """A frame from a remote publisher, as received: parsed only if someone here needs it."""
+        self.latest_frame = frame
+        for tap in self.taps:
+            tap.push(frame)
+        if not self.subscriptions or self.msg_type is None:
+            return
+        try:
+            msg = self.msg_type.model_validate_json(frame)
+        except ValidationError as error:
+            logger.warning("dropped a message on %s that is not a %s: %s", self.name, self.type_name, error)
+            return
+        self.latest_msg = msg
+        for subscription in self.subscriptions:
+            subscription.receive(msg)
+
+    # -- the node's own socket (TopicPort) --------------------------------------------------
+
+    def open(self, connection: TopicConnection) -> str | None:
+        """A socket reads what this participant publishes; a latched topic's latest goes first."""
+        if connection.outbox is not None:
+            self.outboxes.add(connection.outbox)
+        return self.latest_frame if self.latched and self.publishing else None
+
+    def receive_frame(self, connection: TopicConnection, text: str) -> None:
+        """A client published ``text`` here: the node publishes it, or, if the node only
+        subscribes to the topic, its subscriptions receive it."""
+        if self.msg_type is None:  # never on a node's own endpoint; the core routes elsewhere
+            raise TypeError(f"{self.name} has no message type here")
+        msg = parse_frame(self.msg_type, self.type_name, text)
+        frame = text if is_complete(msg) else msg.model_dump_json()
+        connection.published = True
+        if self.publishing:
+            self.dispatch(msg, frame, connection.outbox)
+        else:
+            self.receive(msg, frame, connection.outbox)
+
+    def close(self, connection: TopicConnection) -> None:
+        if connection.outbox is not None:
+            self.outboxes.discard(connection.outbox)

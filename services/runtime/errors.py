@@ -1,6 +1,6 @@
-"""Exceptions of the node SDK.
+"""Exceptions of the node SDK (the whole project's tree is drawn in :mod:`shared_models.errors`).
 
-    SkydeckError                  base of everything the SDK raises on purpose
+    SkydeckError                  base of everything Skydeck raises on purpose
     ├── NodeError                 misuse of a node (entity on a destroyed node, two types on one topic)
     └── ServiceError              a service call that got no answer (rospy's ServiceException)
         ├── ServiceUnavailableError   nobody hosts the service, or its node cannot be reached
@@ -11,6 +11,8 @@ A service that answers ``success: false`` did answer: that is a response, not an
 """
 
 from __future__ import annotations
+
+from shared_models.errors import SkydeckError
 
 __all__ = [
     "NodeError",
@@ -23,16 +25,14 @@ __all__ = [
 ]
 
 
-class SkydeckError(Exception):
-    """Base class of the SDK's exceptions."""
-
-
 class NodeError(SkydeckError):
     """A node was used in a way it cannot honour (raised at the call that did it)."""
 
 
 class ServiceError(SkydeckError):
     """A service call got no answer; ``name`` is the service."""
+
+    http_status = 502
 
     def __init__(self, name: str, message: str) -> None:
         super().__init__(message)
@@ -42,9 +42,13 @@ class ServiceError(SkydeckError):
 class ServiceUnavailableError(ServiceError):
     """No node hosts the service, or the hosting node cannot be reached."""
 
+    http_status = 503
+
 
 class ServiceTimeoutError(ServiceError):
     """The hosting node did not answer within the call's timeout."""
+
+    http_status = 504
 
 
 class ServiceCallRejectedError(ServiceError):

@@ -29,6 +29,8 @@ from urllib.parse import urlsplit
 
 import httptools
 
+from shared_models.errors import SkydeckError
+
 __all__ = ["HttpClient", "HttpError", "HttpReply", "HttpTimeout", "HttpUnreachable"]
 
 # uvicorn closes a keep-alive connection after 5 idle seconds; reusing one older than this
@@ -38,7 +40,7 @@ _MAX_IDLE_PER_ORIGIN = 8
 MAX_REPLY_BYTES = 64 * 1024 * 1024
 
 
-class HttpError(Exception):
+class HttpError(SkydeckError):
     """A request that got no reply."""
 
 

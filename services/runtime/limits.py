@@ -6,11 +6,15 @@ import json
 
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
+from shared_models.errors import SkydeckError
+
 __all__ = ["BodySizeLimit"]
 
 
-class _TooLarge(Exception):
-    pass
+class _TooLarge(SkydeckError):
+    """A body went over the limit while it was read (answered 413 here, never raised further)."""
+
+    http_status = 413
 
 
 class BodySizeLimit:

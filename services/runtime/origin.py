@@ -15,10 +15,11 @@ from urllib.parse import urlsplit
 
 from starlette.types import ASGIApp, Receive, Scope, Send
 
+from services.runtime.wire import Close
+
 __all__ = ["SameOriginOnly"]
 
 _SAFE_METHODS = frozenset({"GET", "HEAD", "OPTIONS"})
-_CLOSE_POLICY = 1008
 
 
 class SameOriginOnly:
@@ -35,7 +36,7 @@ class SameOriginOnly:
         reason = "cross-origin request refused: open the dashboard from this server, or call it without a browser"
         if scope["type"] == "websocket":
             await receive()  # websocket.connect
-            await send({"type": "websocket.close", "code": _CLOSE_POLICY, "reason": reason})
+            await send({"type": "websocket.close", "code": int(Close.POLICY), "reason": reason})
             return
         body = json.dumps({"detail": reason}).encode()
         await send({

@@ -15,6 +15,7 @@ from pydantic import BaseModel, ConfigDict, Field, TypeAdapter
 
 __all__ = [
     "CoreFrame",
+    "CoreFrameModel",
     "Entity",
     "NodeDescription",
     "NodeFrame",
@@ -93,4 +94,7 @@ NodeFrame = Annotated[RegisterFrame | UpdateFrame | StatsFrame, Field(discrimina
 CoreFrame = Annotated[RegisteredFrame | RejectedFrame | PublishersFrame, Field(discriminator="op")]
 
 node_frames: TypeAdapter[RegisterFrame | UpdateFrame | StatsFrame] = TypeAdapter(NodeFrame)
+CoreFrameModel = RegisteredFrame | RejectedFrame | PublishersFrame
+"""Any frame the core sends a node."""
+
 core_frames: TypeAdapter[RegisteredFrame | RejectedFrame | PublishersFrame] = TypeAdapter(CoreFrame)

@@ -7,13 +7,13 @@ import logging
 from collections.abc import Callable
 from typing import Any
 
-from services.runtime.errors import NodeError
+from services.runtime.errors import NodeError, SkydeckError
 from shared_models import Message, ServiceType
 
 __all__ = ["Service", "ServiceHandlerError"]
 
 
-class ServiceHandlerError(Exception):
+class ServiceHandlerError(SkydeckError):
     """The user's handler raised or returned something that is not the response type."""
 
 

@@ -17,7 +17,7 @@ from websockets.asyncio.client import ClientConnection, connect
 from websockets.exceptions import ConnectionClosed, InvalidHandshake, WebSocketException
 
 from services.runtime.auth import WEBSOCKET_CLIENT_LOGGER
-from services.runtime.links import stream_url
+from services.runtime.edge.links import stream_url
 from services.runtime.protocol import (
     NodeDescription,
     PublishersFrame,
@@ -28,6 +28,8 @@ from services.runtime.protocol import (
     UpdateFrame,
     core_frames,
 )
+from services.runtime.wire import Close
+from shared_models.errors import SkydeckError
 
 if TYPE_CHECKING:
     from services.runtime.protocol import PublisherAddress
@@ -37,18 +39,17 @@ __all__ = ["CoreSession", "RegistrationRejected"]
 _RETRY_FIRST_S = 0.1
 _RETRY_MAX_S = 0.5
 _STATS_PERIOD_S = 1.0
-_CLOSE_POLICY = 1008  # the core refused the session (no token, or the wrong one)
 
 logger = logging.getLogger("skydeck.runtime")
 
 
-class RegistrationRejected(Exception):
+class RegistrationRejected(SkydeckError):
     """The core refused this node (for example, a newer node took its name)."""
 
 
 def _refusal(error: BaseException) -> str | None:
     """The core's reason when it closed the session as not allowed (1008), else None."""
-    if isinstance(error, ConnectionClosed) and error.rcvd is not None and error.rcvd.code == _CLOSE_POLICY:
+    if isinstance(error, ConnectionClosed) and error.rcvd is not None and error.rcvd.code == Close.POLICY:
         return error.rcvd.reason
     return None
 

@@ -1,54 +1,82 @@
-"""Settings of a node process: one pydantic-settings class, read from ``SKYDECK_*`` variables."""
+"""Settings of Skydeck's processes: one pydantic-settings source, read from ``SKYDECK_*``.
+
+    ProcessSettings      what every server process has: where it listens, its token, its limits
+    ├── NodeSettings     + how a node reaches the core, sim time, service-call timeout
+    └── CoreSettings     (services.core.settings) + the gateway's timeouts and the endpoints' ports
+
+Every field reads from the environment with the ``SKYDECK_`` prefix (``SKYDECK_PORT=8003``).
+The CLI does not go through the environment: its flags become keyword arguments
+(:func:`set_process_overrides`), which win over the environment, as pydantic-settings orders them.
+"""
 
 from __future__ import annotations
 
-import os
 import socket
+from typing import Any, TypeVar
 
 from pydantic import Field
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
-__all__ = ["DEFAULT_CORE_URL", "MAX_MESSAGE_BYTES", "NodeSettings", "reachable_host", "settings_with_default_port"]
+from services.runtime.wire import MAX_MESSAGE_BYTES
+
+__all__ = [
+    "DEFAULT_CORE_URL",
+    "MAX_MESSAGE_BYTES",
+    "NodeSettings",
+    "ProcessSettings",
+    "process_settings",
+    "reachable_host",
+    "set_process_overrides",
+]
 
 DEFAULT_CORE_URL = "http://127.0.0.1:8000"
-# Frames and bodies above this are refused (WebSocket close 1009, HTTP 413): a camera frame is
-# ~20 KiB, so 1 MiB leaves room while bounding what one client can make a node buffer.
-MAX_MESSAGE_BYTES = 1 << 20
+
+S = TypeVar("S", bound="ProcessSettings")
+
+# Flags of this process's command line (`skydeck run --port 8003 ...`), by field name.
+_overrides: dict[str, Any] = {}
 
 
-class NodeSettings(BaseSettings):
-    """Where a node listens, how it reaches the core, and its limits.
-
-    Every field reads from the environment with the ``SKYDECK_`` prefix (``SKYDECK_PORT=8003``);
-    ``skydeck run`` maps its flags onto the same variables.
-    """
+class ProcessSettings(BaseSettings):
+    """Where a server process listens, its access token and its limits."""
 
     model_config = SettingsConfigDict(env_prefix="SKYDECK_", extra="ignore")
 
-    # Where the node listens: loopback unless told otherwise (containers pass 0.0.0.0).
+    # Where it listens: loopback unless told otherwise (containers pass 0.0.0.0).
     host: str = "127.0.0.1"
     port: int = Field(default=0, ge=0, le=65535, description="0 picks a free port")
-    # The URL other processes use to reach this node; derived from host/port when empty.
+    # The URL other processes use to reach it; derived from host/port when empty.
     advertise_url: str = ""
-    core_url: str = DEFAULT_CORE_URL
     token: str = ""
-    use_sim_time: bool = False
 
     # Limits
     max_message_bytes: int = Field(default=MAX_MESSAGE_BYTES, gt=0)
     # Keep-alive pings reap sockets whose peer vanished without closing.
     ping_interval_s: float = Field(default=5.0, gt=0)
     ping_timeout_s: float = Field(default=10.0, gt=0)
-    service_timeout_s: float = Field(default=10.0, gt=0)
 
     log_level: str = "INFO"
 
 
-def settings_with_default_port(default_port: int) -> NodeSettings:
-    """Settings for a built-in node: its well-known port unless ``SKYDECK_PORT`` says otherwise."""
-    if "SKYDECK_PORT" in os.environ:
-        return NodeSettings()
-    return NodeSettings(port=default_port)
+class NodeSettings(ProcessSettings):
+    """A node's settings: a process's, and how it reaches the core."""
+
+    core_url: str = DEFAULT_CORE_URL
+    use_sim_time: bool = False
+    service_timeout_s: float = Field(default=10.0, gt=0)
+
+
+def set_process_overrides(**values: Any) -> None:
+    """Settings given on this process's command line; ``None`` values are left out."""
+    _overrides.update({key: value for key, value in values.items() if value is not None})
+
+
+def process_settings(cls: type[S], **defaults: Any) -> S:
+    """``cls`` from its defaults, then ``defaults`` (a built-in node's port), then the
+    environment, then the command line (:func:`set_process_overrides`)."""
+    from_env = cls()
+    explicit = {name: getattr(from_env, name) for name in from_env.model_fields_set}
+    return cls(**{**defaults, **explicit, **{k: v for k, v in _overrides.items() if k in cls.model_fields}})
 
 
 def reachable_host(host: str) -> str:

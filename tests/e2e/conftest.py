@@ -16,28 +16,26 @@ import httpx
 import pytest
 from websockets.asyncio.client import connect
 
-from services.runtime.links import stream_url
+from services.launch.background import BackgroundProcess
+from services.runtime.edge.links import stream_url
 from tests.conftest import free_port_block
 
 
 @dataclass
 class LaunchedSystem:
-    """A running `skydeck launch` and what it printed."""
+    """A running `skydeck launch` (a BackgroundProcess) and what it printed."""
 
-    process: asyncio.subprocess.Process
+    process: BackgroundProcess
     core_url: str
-    lines: list[str] = field(default_factory=list)
-    _line_added: asyncio.Event = field(default_factory=asyncio.Event)
+    pids: set[int] = field(default_factory=set)
+
+    @property
+    def lines(self) -> list[str]:
+        return self.process.lines
 
     async def wait_for_line(self, text: str, timeout_s: float = 60.0, *, after: int = 0) -> int:
         """Wait until a printed line (from index ``after`` on) contains ``text``; its index."""
-        async with asyncio.timeout(timeout_s):
-            while True:
-                for index in range(after, len(self.lines)):
-                    if text in self.lines[index]:
-                        return index
-                self._line_added.clear()
-                await self._line_added.wait()
+        return await self.process.await_line(text, timeout_s, after=after)
 
     async def graph(self) -> dict:
         async with httpx.AsyncClient() as http:
@@ -59,47 +57,51 @@ class LaunchedSystem:
         raise AssertionError(f"{topic} ended")
 
 
+def start_launch(
+    *args: str, state_dir: Path, env: dict[str, str] | None = None, unset: tuple[str, ...] = ()
+) -> tuple[BackgroundProcess, str]:
+    """`skydeck launch --base-port B ARGS` on free ports (not yet waited for); its core's URL.
+
+    Its environment is this one, with ``env`` added and the variables in ``unset`` removed.
+    """
+    base = free_port_block(5)
+    environment = {**os.environ, "SKYDECK_STATE_DIR": str(state_dir), "PYTHONUNBUFFERED": "1", **(env or {})}
+    for variable in unset:
+        environment.pop(variable, None)
+    process = BackgroundProcess(
+        [sys.executable, "-m", "services.cli", "launch", "--base-port", str(base), *args],
+        name="skydeck launch",
+        env=environment,
+    )
+    return process, f"http://127.0.0.1:{base}"
+
+
+def stop_launch(process: BackgroundProcess) -> None:
+    """Ctrl-C, as a user would; the launch must stop cleanly, with no traceback printed."""
+    stopped = process.stop(signal.SIGINT, timeout_s=20)
+    assert stopped, "skydeck launch did not stop on Ctrl-C"
+    tracebacks = [i for i, line in enumerate(process.lines) if "Traceback" in line]
+    assert not tracebacks, "\n".join(process.lines[max(tracebacks[0] - 5, 0) : tracebacks[0] + 30])
+    assert process.returncode == 0, process.tail(20)
+
+
 @pytest.fixture
 async def launch(tmp_path: Path) -> AsyncIterator[Callable[..., Awaitable[LaunchedSystem]]]:
     """Start `skydeck launch ARGS` on free ports; stopped with Ctrl-C (SIGINT) afterwards."""
     systems: list[LaunchedSystem] = []
 
     async def start(*args: str, env: dict[str, str] | None = None) -> LaunchedSystem:
-        base = free_port_block(5)
-        process = await asyncio.create_subprocess_exec(
-            sys.executable, "-m", "services.cli", "launch", "--base-port", str(base), *args,
-            env={**os.environ, "SKYDECK_STATE_DIR": str(tmp_path / "state"), "PYTHONUNBUFFERED": "1", **(env or {})},
-            stdout=asyncio.subprocess.PIPE, stderr=asyncio.subprocess.STDOUT,
-            start_new_session=True,
-        )
-        system = LaunchedSystem(process, f"http://127.0.0.1:{base}")
+        process, core_url = start_launch(*args, state_dir=tmp_path / "state", env=env)
+        system = LaunchedSystem(process, core_url)
         systems.append(system)
-
-        async def pump() -> None:
-            assert process.stdout is not None
-            async for raw in process.stdout:
-                system.lines.append(raw.decode(errors="replace").rstrip("\n"))
-                system._line_added.set()
-
-        system._pump = asyncio.create_task(pump())  # type: ignore[attr-defined]
         await system.wait_for_line("[launch] all", timeout_s=60)
-        system.pids = {node["pid"] for node in (await system.graph())["nodes"]}  # type: ignore[attr-defined]
+        system.pids = {node["pid"] for node in (await system.graph())["nodes"]}
         return system
 
     yield start
     for system in systems:
-        if system.process.returncode is None:
-            system.process.send_signal(signal.SIGINT)
-            try:
-                await asyncio.wait_for(system.process.wait(), 20)
-            except TimeoutError:
-                with contextlib.suppress(ProcessLookupError):
-                    os.killpg(system.process.pid, signal.SIGKILL)
-                raise AssertionError("skydeck launch did not stop on Ctrl-C") from None
-        await system._pump  # type: ignore[attr-defined]
-        assert not any("Traceback" in line for line in system.lines), "\n".join(system.lines[-40:])
-        assert system.process.returncode == 0, "\n".join(system.lines[-20:])
-        for pid in system.pids:  # type: ignore[attr-defined]
+        await asyncio.to_thread(stop_launch, system.process)
+        for pid in system.pids:
             assert not _alive(pid), f"pid {pid} outlived skydeck launch"
 
 

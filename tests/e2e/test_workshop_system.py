@@ -12,7 +12,7 @@ import signal
 import pytest
 from websockets.asyncio.client import connect
 
-from services.runtime.links import stream_url
+from services.runtime.edge.links import stream_url
 
 pytestmark = [pytest.mark.e2e, pytest.mark.timeout(240)]
 

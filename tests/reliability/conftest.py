@@ -7,11 +7,6 @@
 
 from __future__ import annotations
 
-import os
-import signal
-import subprocess
-import sys
-import threading
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass, field
@@ -19,8 +14,7 @@ from dataclasses import dataclass, field
 import httpx
 import pytest
 
-from tests.conftest import free_port_block
-from tests.e2e.conftest import LaunchedSystem, launch
+from tests.e2e.conftest import LaunchedSystem, launch, start_launch, stop_launch
 
 __all__ = ["LaunchedSystem", "Workshop", "launch", "workshop"]
 
@@ -44,45 +38,25 @@ class Workshop:
 
 @pytest.fixture(scope="session")
 def workshop(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Workshop]:
-    base = free_port_block(5)
-    env = {**os.environ, "SKYDECK_STATE_DIR": str(tmp_path_factory.mktemp("state")), "PYTHONUNBUFFERED": "1"}
-    env.pop("SKYDECK_TOKEN", None)
-    process = subprocess.Popen(
-        [sys.executable, "-m", "services.cli", "launch", "--base-port", str(base), "--seed", "1"],
-        env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True,
+    process, core_url = start_launch(
+        "--seed", "1", state_dir=tmp_path_factory.mktemp("state"), unset=("SKYDECK_TOKEN",)
     )
-    lines: list[str] = []
-    ready = threading.Event()
-
-    def pump() -> None:
-        assert process.stdout is not None
-        for line in process.stdout:
-            lines.append(line.rstrip("\n"))
-            if line.startswith("[launch] all"):
-                ready.set()
-        ready.set()
-
-    reader = threading.Thread(target=pump, daemon=True)
-    reader.start()
     try:
-        if not ready.wait(60) or process.poll() is not None:
-            raise AssertionError("skydeck launch did not come up:\n" + "\n".join(lines[-30:]))
-        core_url = f"http://127.0.0.1:{base}"
-        deadline = time.monotonic() + 10
-        while True:
-            nodes = {n["name"]: n["url"] for n in httpx.get(core_url + "/api/graph", timeout=5).json()["nodes"]}
-            if {"/sim", "/perception", "/control", "/ai"} <= nodes.keys() or time.monotonic() > deadline:
-                break
-            time.sleep(0.1)
-        yield Workshop(core_url, nodes, lines)
+        process.wait_for_line("[launch] all", timeout_s=60)
+        nodes = _registered(core_url, {"/sim", "/perception", "/control", "/ai"}, timeout_s=10)
+        yield Workshop(core_url, nodes, process.lines)
     finally:
-        process.send_signal(signal.SIGINT)
-        try:
-            process.wait(20)
-        except subprocess.TimeoutExpired:
-            os.killpg(process.pid, signal.SIGKILL)
-            process.wait()
-        reader.join(5)
-    # Whatever the tests sent, no process printed a traceback (a handler that crashed).
-    tracebacks = [i for i, line in enumerate(lines) if "Traceback" in line]
-    assert not tracebacks, "\n".join(lines[tracebacks[0] - 5 : tracebacks[0] + 30])
+        # Whatever the tests sent, the system stops cleanly and no process printed a traceback.
+        stop_launch(process)
+
+
+def _registered(core_url: str, names: set[str], timeout_s: float) -> dict[str, str]:
+    """Node name -> URL once every one of ``names`` is registered; fails after ``timeout_s``."""
+    deadline = time.monotonic() + timeout_s
+    while True:
+        nodes = {n["name"]: n["url"] for n in httpx.get(core_url + "/api/graph", timeout=5).json()["nodes"]}
+        if names <= nodes.keys():
+            return nodes
+        if time.monotonic() > deadline:
+            raise AssertionError(f"not registered after {timeout_s:g} s: {sorted(names - nodes.keys())}")
+        time.sleep(0.1)

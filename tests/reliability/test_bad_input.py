@@ -17,8 +17,8 @@ import pytest
 from websockets.exceptions import ConnectionClosed
 from websockets.sync.client import connect
 
-from services.runtime.links import stream_url
-from services.runtime.settings import MAX_MESSAGE_BYTES
+from services.runtime.edge.links import stream_url
+from services.runtime.wire import MAX_MESSAGE_BYTES
 from tests.reliability.conftest import Workshop
 
 pytestmark = [pytest.mark.e2e, pytest.mark.timeout(120)]

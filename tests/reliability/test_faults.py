@@ -16,8 +16,9 @@ from collections.abc import Callable
 import httpx
 import pytest
 from websockets.asyncio.client import connect
+from websockets.exceptions import ConnectionClosed, InvalidHandshake
 
-from services.runtime.links import stream_url
+from services.runtime.edge.links import stream_url
 from tests.reliability.conftest import LaunchedSystem
 
 pytestmark = [pytest.mark.e2e, pytest.mark.timeout(150)]
@@ -80,7 +81,8 @@ def _assert_every_box_once(status: dict, boxes: int = 8) -> None:
 async def _collect(url: str, topic: str, into: list[dict], **query: object) -> None:
     """Append every message of ``topic`` at ``url`` to ``into`` (reconnecting), until cancelled."""
     while True:
-        with contextlib.suppress(OSError, Exception):
+        # Only the connection may fail (a node or the core restarting); anything else is a bug.
+        with contextlib.suppress(OSError, TimeoutError, InvalidHandshake, ConnectionClosed):
             async with connect(stream_url(url, topic, **query), max_size=None) as websocket:
                 async for frame in websocket:
                     into.append(json.loads(frame))

@@ -26,9 +26,9 @@ from websockets.exceptions import ConnectionClosed, InvalidStatus
 import services.runtime.auth as auth
 from services.core.settings import CoreSettings
 from services.runtime import Node, NodeSettings
-from services.runtime.links import stream_url
+from services.runtime.edge.links import stream_url
 from services.runtime.protocol import NodeDescription, RegisterFrame
-from services.runtime.settings import MAX_MESSAGE_BYTES
+from services.runtime.wire import MAX_MESSAGE_BYTES
 from shared_models.geometry_msgs import Twist
 from shared_models.std_srvs import Trigger, TriggerResponse
 from tests.conftest import CoreProcess, free_port, wait_until
@@ -99,7 +99,7 @@ async def test_node_with_default_settings_listens_on_loopback_only(monkeypatch: 
     node = Node("bind_probe", settings=NodeSettings(core_url=f"http://127.0.0.1:{free_port()}"))
     await node.start()
     try:
-        addresses = {s.getsockname()[0] for server in node._server.servers for s in server.sockets}
+        addresses = {node._server.address}  # type: ignore[union-attr]
     finally:
         await node.stop()
     assert addresses == {"127.0.0.1"}
@@ -278,7 +278,7 @@ async def test_nodes_use_the_token_among_themselves(tokened) -> None:
         client = reader.create_client(Trigger, "/guarded/poke")
         response = await client.call(Trigger.Request(), timeout_s=5)
         assert response.success and node.calls == 1
-        await wait_until(lambda: reader._links, what="a link")
+        await wait_until(lambda: reader._participant.links, what="a link")
         node.publisher.publish(Twist(linear={"x": 4.0}))
         await wait_until(lambda: any(t.linear.x == 4.0 for t in received), what="the message over the link")
     finally:
@@ -310,10 +310,14 @@ async def test_the_token_is_never_logged(tokened, caplog, capfd) -> None:
         impostor = Node("log_probe", settings=_settings(core, token))
         impostor.create_subscription(Twist, "/guarded/echo", lambda m: None, 1)
         await impostor.start()
-        await asyncio.sleep(0.3)
+        if token == TOKEN:  # the handshake with the token happened and was logged...
+            await wait_until(lambda: "/log_probe" in core.registry.nodes, what="the node to register")
+        else:  # ...and so did the one the core refused
+            await wait_until(lambda: "refused /log_probe" in caplog.text, what="the refusal to be logged")
         await impostor.stop()
     out, err = capfd.readouterr()
     assert len(caplog.records) > 10  # the calls above were logged, at DEBUG...
+    assert "Authorization: Bearer ***" in caplog.text  # ...headers included, redacted...
     for token in (TOKEN, WRONG):  # ...but no line holds a token
         assert token not in caplog.text
         assert token not in out + err

@@ -20,7 +20,7 @@ import pytest
 from websockets.asyncio.client import connect
 
 from services.runtime import Node, NodeSettings
-from services.runtime.links import stream_url
+from services.runtime.edge.links import stream_url
 from shared_models.std_msgs import Int32
 from shared_models.std_srvs import Trigger, TriggerResponse
 from tests.conftest import CoreProcess, free_port, wait_until
@@ -78,7 +78,7 @@ async def test_vanished_clients_are_reaped_by_pings_and_others_go_on(talker_fact
     # With pings every 0.2 s and 0.3 s to answer, a silent socket is dropped within ~0.5 s. The
     # control case (pings an hour apart) shows that it is the pings that drop it.
     node = await talker_factory(ping_interval_s=0.2 if pings else 3600, ping_timeout_s=0.3 if pings else 3600)
-    outboxes = node._endpoints["/count"].outboxes
+    outboxes = node._participant.endpoints["/count"].outboxes
     vanished = [await _vanishing_client(_port(node.url), "/count") for _ in range(5)]
     try:
         async with connect(stream_url(node.url, "/count")) as healthy:
@@ -120,7 +120,7 @@ async def test_core_reaps_vanished_gateway_readers() -> None:
             async with asyncio.timeout(20):
                 while not await registered():
                     await asyncio.sleep(0.05)
-        outboxes = node._endpoints["/count"].outboxes
+        outboxes = node._participant.endpoints["/count"].outboxes
         writer = await _vanishing_client(port, "/count")
         try:
             await wait_until(lambda: len(outboxes) == 1, what="the core's link to the publisher")

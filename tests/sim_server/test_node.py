@@ -10,7 +10,7 @@ import httpx
 from websockets.asyncio.client import connect
 
 from services.runtime import Node
-from services.runtime.links import stream_url
+from services.runtime.edge.links import stream_url
 from shared_models.geometry_msgs import Point, PoseArray, PoseStamped
 from shared_models.mavros_msgs import PositionTarget
 from shared_models.std_msgs import Header

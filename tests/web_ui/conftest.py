@@ -34,7 +34,7 @@ CHROMIUM_ARGS = [
 def system(tmp_path_factory: pytest.TempPathFactory) -> Iterator[System]:
     """Core on P, sim on P+1 (seed 1, real time), control on P+3; stopped after the module."""
     base = free_port_block(5)
-    running = System(base, tmp_path_factory.mktemp("system"))
+    running = System(base)
     try:
         running.start("core", ["core"], base)
         running.start("sim", ["run", "sim", "--speed", "1", "--seed", "1"], base + 1)

@@ -252,7 +252,10 @@ def test_inspector_echoes_pauses_and_publishes(dashboard, system: System) -> Non
     page.fill('[data-field="point.x"]', "3.5")
     page.fill('[data-field="header.frame_id"]', "odom")
     page.wait_for_function(
-        "window.skydeck.sockets().some(s => s.topic === '/ui_test_point' && s.state === 'open')", timeout=10_000
+        # the echo socket and the publishing socket (the core sends no socket its own frames)
+        "(() => { const s = window.skydeck.sockets().filter(s => s.topic === '/ui_test_point');"
+        " return s.length === 2 && s.every(s => s.state === 'open'); })()",
+        timeout=10_000,
     )
     page.click("#inspect-send")
     page.wait_for_function("document.querySelector('#inspect-echo').textContent.includes('3.5')", timeout=10_000)

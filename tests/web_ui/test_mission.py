@@ -24,7 +24,7 @@ DOCS_SCREENSHOT = REPO / "docs" / "img" / "dashboard.png"
 def system(tmp_path_factory: pytest.TempPathFactory) -> Iterator[System]:
     """Overrides the conftest's: every node of the workshop, the AI's progress in a fresh folder."""
     base = free_port_block(5)
-    running = System(base, tmp_path_factory.mktemp("mission_system"))
+    running = System(base)
     state = {"SKYDECK_STATE_DIR": str(tmp_path_factory.mktemp("ai_state"))}
     try:
         running.start("core", ["core"], base)

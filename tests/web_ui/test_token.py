@@ -21,7 +21,7 @@ TOKEN = "workshop-secret"
 @pytest.fixture(scope="module")
 def token_system(tmp_path_factory: pytest.TempPathFactory) -> Iterator[System]:
     base = free_port_block(5)
-    running = System(base, tmp_path_factory.mktemp("token_system"))
+    running = System(base)
     try:
         running.start("core", ["core"], base, env={"SKYDECK_TOKEN": TOKEN})
         running.start("control", ["run", "control"], base + 3, env={"SKYDECK_TOKEN": TOKEN})

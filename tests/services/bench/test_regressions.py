@@ -12,7 +12,7 @@ import time
 
 from websockets.asyncio.server import ServerConnection, serve
 
-from services.runtime.links import PublisherLink
+from services.runtime.edge.links import PublisherLink
 from services.runtime.subscription import Subscription
 from shared_models.std_msgs import Int32
 

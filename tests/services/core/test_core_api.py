@@ -11,7 +11,7 @@ from websockets.asyncio.client import connect
 from websockets.exceptions import ConnectionClosed
 
 from services.runtime import Node
-from services.runtime.links import stream_url
+from services.runtime.edge.links import stream_url
 from services.runtime.protocol import RegisterFrame
 from shared_models.geometry_msgs import PoseStamped
 from shared_models.std_srvs import Trigger, TriggerResponse

@@ -7,7 +7,7 @@ import asyncio
 
 import pytest
 
-from services.runtime.stream import _EagerSend
+from services.runtime.edge.pump import _EagerSend
 
 pytestmark = pytest.mark.timeout(10)
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import asyncio
 
-from services.runtime.outbox import Outbox
+from services.runtime.edge.outbox import Outbox
 
 
 async def test_drain_returns_frames_in_order() -> None:

@@ -39,8 +39,8 @@ async def test_messages_flow_between_nodes_with_seq_filled(start_node) -> None:
     talker = await start_node(Talker)
     listener = await start_node(Listener)
     # The listener links to the talker as soon as the core pushes the publisher list.
-    await wait_until(lambda: listener._links, what="listener to link to the talker")
-    for link, _ in listener._links.values():
+    await wait_until(lambda: listener._participant.links, what="listener to link to the talker")
+    for link, _ in listener._participant.links.values():
         await asyncio.wait_for(link.connected.wait(), 5)
     for x in (1.0, 2.0, 3.0):
         talker.send(x)
@@ -70,7 +70,7 @@ async def test_subscription_in_the_same_node_gets_messages_without_a_socket(star
     talker.send(7.0)
     await asyncio.wait_for(event.wait(), 5)
     assert got[0].point.x == 7.0
-    assert not talker._links
+    assert not talker._participant.links
 
 
 async def test_get_latest_message_on_node_and_gateway(core, start_node) -> None:
@@ -151,8 +151,8 @@ async def test_rosout_carries_log_lines(core, start_node) -> None:
 
     talker = await start_node(Talker)
     watcher = await start_node(Watcher)
-    await wait_until(lambda: any(k[1] == talker.url for k in watcher._links), what="watcher to link")
-    for link, _ in watcher._links.values():
+    await wait_until(lambda: any(k[1] == talker.url for k in watcher._participant.links), what="watcher to link")
+    for link, _ in watcher._participant.links.values():
         await asyncio.wait_for(link.connected.wait(), 5)
     talker.get_logger().info("taking off from %s", "pad 1")
     await wait_until(lambda: any(m.msg == "taking off from pad 1" for m in logs), what="the log line")

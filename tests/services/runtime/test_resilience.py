@@ -28,8 +28,8 @@ def _settings(core_url: str) -> NodeSettings:
 
 
 async def _linked(node: Node) -> None:
-    await wait_until(lambda: node._links, what="a link")
-    for link, _ in list(node._links.values()):
+    await wait_until(lambda: node._participant.links, what="a link")
+    for link, _ in list(node._participant.links.values()):
         await asyncio.wait_for(link.connected.wait(), 5)
 
 

@@ -10,7 +10,7 @@ from websockets.asyncio.client import connect
 from websockets.exceptions import ConnectionClosed
 
 from services.runtime import Node
-from services.runtime.links import stream_url
+from services.runtime.edge.links import stream_url
 from shared_models.geometry_msgs import Twist
 from tests.conftest import wait_until
 
@@ -101,7 +101,7 @@ async def test_bad_options_close_with_1008(start_node, query) -> None:
 
 async def test_slow_reader_loses_oldest_and_does_not_slow_others(start_node) -> None:
     sink = await start_node(Teleop)
-    outboxes = sink._endpoints["/echo"].outboxes
+    outboxes = sink._participant.endpoints["/echo"].outboxes
     async with connect(stream_url(sink.url, "/echo", queue=5), max_queue=1) as slow:
         await wait_until(lambda: len(outboxes) == 1, what="the slow reader")
         (slow_outbox,) = outboxes
@@ -132,7 +132,7 @@ async def test_slow_reader_loses_oldest_and_does_not_slow_others(start_node) -> 
 async def test_rate_option_throttles_to_newest(start_node) -> None:
     sink = await start_node(Teleop)
     async with connect(stream_url(sink.url, "/echo", rate=5)) as websocket:
-        await wait_until(lambda: sink._endpoints["/echo"].outboxes, what="the reader")
+        await wait_until(lambda: sink._participant.endpoints["/echo"].outboxes, what="the reader")
         for i in range(100):
             sink.publisher.publish(Twist(linear={"x": float(i)}))
         first = json.loads(await asyncio.wait_for(websocket.recv(), 5))

@@ -2,6 +2,7 @@
 // display, and topic sockets that reconnect by themselves with backoff.
 
 import { getToken, requestToken } from "./auth.js";
+import { CLOSE } from "./config.js";
 
 const TOKEN_HINT = "token";
 
@@ -87,13 +88,14 @@ export function socketStates() {
 
 /**
  * One topic as a stream: onMessage(msg) per frame; publish(msg) sends a frame of the topic's
- * type on the same socket. Reconnects with exponential backoff (0.5 s .. 10 s) until close().
+ * type on the same socket (never sent back to it). mode "publish" reads nothing, "subscribe"
+ * may not publish. Reconnects with exponential backoff (0.5 s .. 10 s) until close().
  * onStatus({state, code, reason}) reports "connecting" | "open" | "closed" | "stopped".
  */
 export class TopicSocket {
-  constructor(topic, { rate, queue, type, onMessage, onStatus, onError } = {}) {
+  constructor(topic, { rate, queue, type, mode, onMessage, onStatus, onError } = {}) {
     this.topic = topic;
-    this.params = { rate, queue, type };
+    this.params = { rate, queue, type, mode };
     this.onMessage = onMessage || (() => {});
     this.onStatus = onStatus || (() => {});
     this.onError = onError || (() => {});
@@ -177,14 +179,14 @@ export class TopicSocket {
     this._ws = null;
     if (!this._wanted) return;
     this._setState("closed", code, reason);
-    if (code === 1008 && reason.toLowerCase().includes(TOKEN_HINT)) {
+    if (code === CLOSE.policy && reason.toLowerCase().includes(TOKEN_HINT)) {
       this.onError(`${this.topic}: ${reason}`);
       const given = await requestToken(reason); // only publishing needs it: a user action
       this._retry(given ? 0 : 10_000);
-    } else if (code === 1007 || code === 1008 || code === 1003 || code === 1009) {
+    } else if ([CLOSE.invalid_frame, CLOSE.policy, CLOSE.unsupported, CLOSE.too_big].includes(code)) {
       // The core refused what we sent or asked for: say why, then read the topic again.
       this.onError(`${this.topic} closed (${code}): ${reason}`);
-      this._retry(code === 1008 ? 5000 : 200);
+      this._retry(code === CLOSE.policy ? 5000 : 200);
     } else {
       this._retry();
     }

@@ -35,7 +35,7 @@ export class View {
   }
 
   /** Show the square [-half, half]^2 metres around the origin. */
-  fit(half = 20) {
+  fit(half) {
     this.cx = 0;
     this.cy = 0;
     this.scale = Math.min(this.width, this.height) / (2 * half * 1.04);

@@ -15,6 +15,7 @@ export class Inspector {
     this.kind = null; // "topic" | "service"
     this.type = null;
     this.socket = null;
+    this.publisher = null;
     this.paused = false;
     this.messages = []; // last few frames, as text
     this.received = 0;
@@ -76,10 +77,19 @@ export class Inspector {
     const heavy = (this.type || "").includes("Image");
     this.socket = new TopicSocket(this.name, {
       rate: heavy ? 1 : 10,
-      type: this.graph.topicType(this.name) ? undefined : this.type || undefined,
+      mode: "subscribe",
       onMessage: (msg) => this._onMessage(msg),
       onError: (text) => this._result("error", text),
     }).open();
+    // Publishing goes on its own socket, as `rostopic pub` beside `rostopic echo`: the core never
+    // sends a socket its own frames back, and the echo above shows what was published.
+    if (this.type) {
+      this.publisher = new TopicSocket(this.name, {
+        mode: "publish",
+        type: this.graph.topicType(this.name) ? undefined : this.type,
+        onError: (text) => this._result("error", text),
+      }).open();
+    }
     this._stats();
   }
 
@@ -125,7 +135,7 @@ export class Inspector {
   async _chooseType(type) {
     if (!type) return;
     this.type = type;
-    if (this.socket) this.socket.close();
+    this._closeSockets();
     this._openEcho();
     await this._loadInterface(type);
   }
@@ -163,7 +173,7 @@ export class Inspector {
     const hz = Number(this.e.repeat.value);
     this._stopRepeat();
     const once = () => {
-      if (this.socket && this.socket.publish(msg)) this._result("success", `published on ${this.name}${hz ? ` at ${hz} Hz` : ""}`);
+      if (this.publisher && this.publisher.publish(msg)) this._result("success", `published on ${this.name}${hz ? ` at ${hz} Hz` : ""}`);
       else this._result("error", `${this.name}: socket not open yet; try again`);
     };
     once();
@@ -180,10 +190,14 @@ export class Inspector {
     this.e.result.textContent = text;
   }
 
+  _closeSockets() {
+    for (const socket of [this.socket, this.publisher]) if (socket) socket.close();
+    this.socket = this.publisher = null;
+  }
+
   _close() {
     this._stopRepeat();
-    if (this.socket) this.socket.close();
-    this.socket = null;
+    this._closeSockets();
     this.paused = false;
     this.e.pause.textContent = "Pause";
   }

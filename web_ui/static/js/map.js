@@ -1,6 +1,7 @@
 // The live map: owns the canvas, redraws the latest state on every animation frame, pans on
 // drag, zooms on the wheel, and turns a click into a fly command.
 
+import { config } from "./config.js";
 import { View } from "./geometry.js";
 import {
   COLORS,
@@ -16,6 +17,7 @@ import {
 } from "./map_draw.js";
 
 const CLICK_SLOP_PX = 4;
+const ARENA = config.worlds.drone; // the core's numbers, not a copy
 const STALE_POSE_S = 2;
 
 export class MapView {
@@ -46,7 +48,7 @@ export class MapView {
   }
 
   fit() {
-    this.view.fit(20);
+    this.view.fit(ARENA.fly_half_size_m);
   }
 
   /** Page (client) coordinates of a map point: where a test or a user would click. */
@@ -74,8 +76,8 @@ export class MapView {
     ctx.fillStyle = COLORS.background;
     ctx.fillRect(0, 0, view.width, view.height);
     drawGrid(ctx, view);
-    drawArena(ctx, view);
-    drawBoxes(ctx, view, world.simBoxes, world.perceptionBoxes, world.aiStatus);
+    drawArena(ctx, view, ARENA.fly_half_size_m);
+    drawBoxes(ctx, view, ARENA.box_size_m, world.simBoxes, world.perceptionBoxes, world.aiStatus);
     drawTour(ctx, view, pose, world.perceptionBoxes, world.aiStatus);
     drawTrack(ctx, view, world.track);
     for (const layer of this.layers.list()) drawLayer(ctx, view, layer);

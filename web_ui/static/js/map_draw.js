@@ -62,8 +62,8 @@ export function drawGrid(ctx, view) {
   ctx.fillText("y (m)", Math.min(Math.max(ox + 6, 28), view.width - 40), 10);
 }
 
-/** The arena control accepts fly targets in (±20 m), dashed. */
-export function drawArena(ctx, view, half = 20) {
+/** The square control accepts fly targets in (±half m), dashed. */
+export function drawArena(ctx, view, half) {
   const [x0, y0] = view.toScreen(-half, half);
   const [x1, y1] = view.toScreen(half, -half);
   ctx.save();
@@ -96,11 +96,11 @@ function boxColor(index, status) {
 }
 
 /** The boxes: the simulator's (with their yaw) coloured by the AI's progress on perception's. */
-export function drawBoxes(ctx, view, simBoxes, perceptionBoxes, status) {
+export function drawBoxes(ctx, view, boxSize, simBoxes, perceptionBoxes, status) {
   const boxes = simBoxes.length
     ? simBoxes.map((b) => ({ ...b, index: nearestIndex(perceptionBoxes, b.x, b.y) }))
     : perceptionBoxes.map((p, index) => ({ x: p.x, y: p.y, yaw: 0, index }));
-  const half = 1.0 * view.scale; // 2 x 2 m boxes
+  const half = (boxSize / 2) * view.scale;
   for (const box of boxes) {
     const [sx, sy] = view.toScreen(box.x, box.y);
     const color = boxColor(box.index, status);

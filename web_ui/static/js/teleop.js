@@ -59,7 +59,7 @@ export class Teleop {
       : "Off: keys do nothing. Control's setpoint stream, when active, wins over teleop.";
     if (enabled) {
       this.toggle.blur(); // so space and arrows reach the window, not the button
-      this.socket = new TopicSocket(TOPIC, { type: TYPE, rate: 1 }).open();
+      this.socket = new TopicSocket(TOPIC, { type: TYPE, mode: "publish" }).open();
     } else if (this.socket) {
       const socket = this.socket;
       this.socket = null;

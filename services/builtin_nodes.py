@@ -1,0 +1,16 @@
+"""The nodes that ship with Skydeck, by the name ``skydeck run NAME`` and launch files use.
+
+Each value is a module with ``main(argv: list[str]) -> int | None``. Both the CLI and the
+launcher read this table, so neither imports the other for it.
+"""
+
+from __future__ import annotations
+
+__all__ = ["BUILTIN_NODES"]
+
+BUILTIN_NODES = {
+    "sim": "sim_server.node",
+    "perception": "services.perception.node",
+    "control": "services.control.node",
+    "ai": "services.ai.node",
+}

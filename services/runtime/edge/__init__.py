@@ -1,0 +1,29 @@
+"""The topic edge: where frames enter and leave topics over WebSockets.
+
+- :mod:`.topic_socket`: ``serve_topic_socket`` and the ``TopicPort`` every socket talks to
+- :mod:`.options`: ``?queue=&rate=&mode=``
+- :mod:`.frames`: validating a frame, refusing it with a close code
+- :mod:`.pump`: the loop that writes an outbox to a socket and reads what the client sends
+- :mod:`.outbox`: a reader's bounded queue (oldest dropped: ROS's queue_size)
+- :mod:`.links`: the other direction, a subscriber's connection to a remote publisher
+"""
+
+from services.runtime.edge.frames import FrameRejected, close_with, parse_frame
+from services.runtime.edge.links import PublisherLink, stream_url
+from services.runtime.edge.options import Mode, StreamOptions
+from services.runtime.edge.outbox import Outbox
+from services.runtime.edge.topic_socket import TopicConnection, TopicPort, serve_topic_socket
+
+__all__ = [
+    "FrameRejected",
+    "Mode",
+    "Outbox",
+    "PublisherLink",
+    "StreamOptions",
+    "TopicConnection",
+    "TopicPort",
+    "close_with",
+    "parse_frame",
+    "serve_topic_socket",
+    "stream_url",
+]

@@ -1,0 +1,153 @@
+"""A participant in the graph: what a node (or the core) publishes, subscribes to and serves.
+
+It owns the topic endpoints and services, keeps one link per remote publisher of every topic it
+subscribes to, and describes itself for the registry. It has no server and no session: a
+:class:`~services.runtime.node.Node` serves it with its own uvicorn and registers it over a
+session; the core serves its own participant inside its app and registers it in-process.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import os
+from collections.abc import Callable, Coroutine
+from typing import Any
+
+from services.runtime.edge.links import PublisherLink
+from services.runtime.endpoint import TopicEndpoint
+from services.runtime.errors import NodeError
+from services.runtime.protocol import Entity, NodeDescription, PublisherAddress
+from services.runtime.service import Service
+from services.runtime.settings import ProcessSettings
+from shared_models import Message, resolve_name
+
+__all__ = ["Participant"]
+
+Spawn = Callable[[Coroutine[Any, Any, Any]], "asyncio.Task[Any]"]
+
+
+class Participant:
+    """Endpoints, services and links of one named participant (see the module docstring).
+
+    ``on_endpoint`` and ``on_service`` are told about each new one (to serve it);
+    ``on_changed`` whenever the description changes (to tell the registry).
+    """
+
+    def __init__(
+        self,
+        name: str,
+        settings: ProcessSettings,
+        *,
+        on_endpoint: Callable[[TopicEndpoint], None],
+        on_service: Callable[[Service], None],
+        on_changed: Callable[[], None],
+    ) -> None:
+        self.name = name
+        self.settings = settings
+        self.pid = os.getpid()
+        self.url = ""  # where others reach it; set when it serves
+        self.endpoints: dict[str, TopicEndpoint] = {}
+        self.services: dict[str, Service] = {}
+        # (topic, publisher URL) -> the link and the task running it
+        self.links: dict[tuple[str, str], tuple[PublisherLink, asyncio.Task[None]]] = {}
+        self._spawn: Spawn | None = None
+        self._on_endpoint = on_endpoint
+        self._on_service = on_service
+        self.changed = on_changed
+
+    # -- entities -----------------------------------------------------------------------------
+
+    def endpoint(self, msg_type: type[Message], topic: str) -> TopicEndpoint:
+        """The endpoint of ``topic``, made on first use; one topic has one type here."""
+        if not (isinstance(msg_type, type) and issubclass(msg_type, Message) and msg_type.__ros_type__):
+            raise TypeError(f"expected a message type such as PointStamped, got {msg_type!r}")
+        name = resolve_name(topic)
+        endpoint = self.endpoints.get(name)
+        if endpoint is None:
+            if name in self.services:
+                raise NodeError(f"{self.name} already has a service named {name}")
+            return self.add_endpoint(TopicEndpoint(name, msg_type))
+        if endpoint.msg_type is None:  # known by name only so far (the core's clients read it)
+            endpoint.msg_type, endpoint.type_name = msg_type, msg_type.__ros_type__
+        elif endpoint.msg_type is not msg_type:
+            raise NodeError(
+                f"{name} is already used with type {endpoint.type_name} in {self.name}, "
+                f"not {msg_type.__ros_type__}"
+            )
+        return endpoint
+
+    def add_endpoint(self, endpoint: TopicEndpoint) -> TopicEndpoint:
+        """Adopt a new endpoint (the core makes some whose type it does not know)."""
+        self.endpoints[endpoint.name] = endpoint
+        self._on_endpoint(endpoint)
+        return endpoint
+
+    def add_service(self, service: Service) -> None:
+        if service.name in self.services or service.name in self.endpoints:
+            raise NodeError(f"{self.name} already has a topic or service named {service.name}")
+        self.services[service.name] = service
+        self._on_service(service)
+        self.changed()
+
+    # -- the registry -------------------------------------------------------------------------
+
+    def describe(self) -> NodeDescription:
+        """What this participant tells the core about itself."""
+        publications, subscriptions = [], []
+        for endpoint in self.endpoints.values():
+            entity = Entity(name=endpoint.name, type=endpoint.type_name, latched=endpoint.latched)
+            if endpoint.publishing:
+                publications.append(entity)
+            if endpoint.subscribed:
+                subscriptions.append(entity)
+        services = [Entity(name=s.name, type=s.srv_type.__ros_type__) for s in self.services.values()]
+        return NodeDescription(
+            name=self.name,
+            url=self.url,
+            pid=self.pid,
+            publications=publications,
+            subscriptions=subscriptions,
+            services=services,
+        )
+
+    def published_counts(self) -> dict[str, int]:
+        """Messages published so far per topic (the core turns them into rates)."""
+        return {e.name: e.published_count for e in self.endpoints.values() if e.publishing}
+
+    # -- links to remote publishers -------------------------------------------------------------
+
+    def start_links(self, spawn: Spawn) -> None:
+        """Links may be made from now on, as tasks made by ``spawn``."""
+        self._spawn = spawn
+
+    def set_publishers(self, topic: str, publishers: list[PublisherAddress]) -> None:
+        """The core's list of publishers of ``topic`` changed: connect and disconnect links."""
+        endpoint = self.endpoints.get(topic)
+        wanted: set[str] = set()
+        if endpoint is not None and endpoint.subscribed and self._spawn is not None:
+            wanted = {p.url.rstrip("/") for p in publishers} - {self.url}
+        for key in [key for key in self.links if key[0] == topic and key[1] not in wanted]:
+            self.links.pop(key)[1].cancel()
+        if not wanted or endpoint is None or self._spawn is None:
+            return
+        queue_size = max((s.queue_size for s in endpoint.subscriptions), default=100)
+        for url in wanted:
+            if (topic, url) not in self.links:
+                link = PublisherLink(
+                    url,
+                    topic,
+                    endpoint.receive_link_frame,
+                    queue_size=queue_size,
+                    max_message_bytes=self.settings.max_message_bytes,
+                    ping_interval_s=self.settings.ping_interval_s,
+                    ping_timeout_s=self.settings.ping_timeout_s,
+                    token=self.settings.token,
+                )
+                self.links[(topic, url)] = (link, self._spawn(link.run()))
+
+    def stop_links(self) -> None:
+        """Cancel every link (the participant stops)."""
+        for _, task in self.links.values():
+            task.cancel()
+        self.links.clear()
+        self._spawn = None

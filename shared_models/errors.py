@@ -1,0 +1,43 @@
+"""The root of every exception Skydeck raises on purpose, and how the edges map them.
+
+It lives in the lowest package so that messages, the SDK, the core, the simulator, the
+launcher and the CLI all descend from one class. The whole tree::
+
+    SkydeckError                          http  close  raised when
+    ├── InvalidNameError (ValueError)      404  1008   a topic/service/node name is not a ROS name
+    ├── UnknownInterfaceError (LookupError)404  1008   a type name no message or service has
+    ├── FrameRejected                       -   its own  a client's frame or option cannot be taken
+    ├── NodeError                          500  1011   a node used in a way it cannot honour
+    ├── ServiceError                       502   -     a service call got no answer
+    │   ├── ServiceUnavailableError        503   -     nobody hosts it / its node is unreachable
+    │   ├── ServiceTimeoutError            504   -     its node did not answer in time
+    │   └── ServiceCallRejectedError       4xx   -     its node refused the request
+    ├── ServiceHandlerError                500   -     a handler raised or returned the wrong type
+    ├── RegistrationRejected                -    -     the core refused a node's session
+    ├── HttpError                           -    -     an internal HTTP request got no reply
+    │   ├── HttpTimeout / HttpUnreachable
+    ├── InvalidCommand (ValueError)         -    -     a setpoint or cmd_vel the physics refuses
+    ├── LaunchError                         -    -     a launch cannot go ahead
+    │   └── LaunchFileError                            the launch file is missing or wrong
+    ├── CliError                            -    -     a CLI command the user can fix
+    └── BenchError                          -    -     a benchmark could not be measured
+
+Each class says what happened and what to do in its message. The edges map them in one place
+each: HTTP handlers answer ``error.http_status`` with ``{"detail": str(error)}``, WebSocket
+handlers close with ``error.close_code``, and the CLI prints ``skydeck: error: <message>`` and
+exits 1, for any ``SkydeckError``.
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+__all__ = ["SkydeckError"]
+
+
+class SkydeckError(Exception):
+    """Base class of every exception Skydeck raises on purpose; the message says what to do."""
+
+    # How the HTTP and WebSocket edges answer this error when it reaches them.
+    http_status: ClassVar[int] = 500
+    close_code: ClassVar[int] = 1011  # RFC 6455 "internal error"
