@@ -16,11 +16,16 @@ from shared_models import (  # noqa: F401
     builtin_interfaces,
     geometry_msgs,
     mavros_msgs,
+    nav_msgs,
+    neato2_interfaces,
     rcl_interfaces,
     ros_workshop,
+    rosgraph_msgs,
     sensor_msgs,
     std_msgs,
     std_srvs,
+    tf2_msgs,
+    visualization_msgs,
 )
 from shared_models._message import Message, ServiceType, all_interfaces
 from shared_models.interfaces import (
