@@ -114,7 +114,9 @@ _Base64Bytes = Annotated[
     bytes,
     BeforeValidator(_bytes_from),
     PlainSerializer(_bytes_to_base64, return_type=str, when_used="json"),
-    WithJsonSchema({"type": "string", "contentEncoding": "base64", "description": "bytes as base64"}),
+    WithJsonSchema(
+        {"type": "string", "contentEncoding": "base64", "description": "bytes as base64"}
+    ),
 ]
 UInt8Array = Annotated[_Base64Bytes, RosPrimitive("uint8[]")]
 ByteArray = Annotated[_Base64Bytes, RosPrimitive("byte[]")]

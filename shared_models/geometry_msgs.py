@@ -294,7 +294,9 @@ class Wrench(Message):
     """Force (N) and torque (N m)."""
 
     __ros_type__ = "geometry_msgs/msg/Wrench"
-    __ros_comment__ = "# This represents force in free space, separated into its linear and angular parts."
+    __ros_comment__ = (
+        "# This represents force in free space, separated into its linear and angular parts."
+    )
 
     force: Vector3 = Field(default_factory=Vector3)
     torque: Vector3 = Field(default_factory=Vector3)

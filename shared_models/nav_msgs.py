@@ -29,12 +29,12 @@ class Odometry(Message):
     __ros_type__ = "nav_msgs/msg/Odometry"
     __ros_comment__ = (
         "# This represents an estimate of a position and velocity in free space.\n"
-        "# The pose in this message should be specified in the coordinate frame given by header.frame_id\n"
-        "# The twist in this message should be specified in the coordinate frame given by the child_frame_id"
+        "# The pose in this message should be specified in the coordinate frame given by\n"
+        "# header.frame_id, the twist in the coordinate frame given by the child_frame_id"
     )
 
     header: Header = Field(default_factory=Header)
-    child_frame_id: String = ""  # Frame id the pose points to. The twist is in this coordinate frame.
+    child_frame_id: String = ""  # the frame the pose points to, and the twist's frame
     pose: PoseWithCovariance = Field(default_factory=PoseWithCovariance)
     twist: TwistWithCovariance = Field(default_factory=TwistWithCovariance)
 

@@ -295,7 +295,7 @@ class SetParametersAtomicallyRequest(Message):
 
     __ros_type__ = "rcl_interfaces/srv/SetParametersAtomically_Request"
 
-    parameters: list[Parameter] = Field(default_factory=list)  # A list of parameters to set atomically.
+    parameters: list[Parameter] = Field(default_factory=list)  # parameters to set atomically
 
 
 class SetParametersAtomicallyResponse(Message):
@@ -347,7 +347,7 @@ class DescribeParametersRequest(Message):
 
     __ros_type__ = "rcl_interfaces/srv/DescribeParameters_Request"
 
-    names: list[String] = Field(default_factory=list)  # A list of parameters of which to get the descriptor.
+    names: list[String] = Field(default_factory=list)  # parameters to get the descriptors of
 
 
 class DescribeParametersResponse(Message):

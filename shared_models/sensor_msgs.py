@@ -181,10 +181,13 @@ class CameraInfo(Message):
 
 
 class PointField(Message):
-    """One field of a PointCloud2 point: its name, byte offset, ``datatype`` (a constant) and count."""
+    """One field of a PointCloud2 point: name, byte offset, ``datatype`` (a constant) and count."""
 
     __ros_type__ = "sensor_msgs/msg/PointField"
-    __ros_comment__ = "# This message holds the description of one point entry in the\n# PointCloud2 message format."
+    __ros_comment__ = (
+        "# This message holds the description of one point entry in the\n"
+        "# PointCloud2 message format."
+    )
     __ros_constants__ = (
         "INT8",
         "UINT8",
@@ -228,7 +231,7 @@ class PointCloud2(Message):
     header: Header = Field(default_factory=Header)
     height: UInt32 = 0  # 2D structure of the point cloud: 1 row if the cloud is unordered
     width: UInt32 = 0
-    fields: list[PointField] = Field(default_factory=list)  # Describes the channels and their layout
+    fields: list[PointField] = Field(default_factory=list)  # the channels and their layout
     is_bigendian: Bool = False  # Is this data bigendian?
     point_step: UInt32 = 0  # Length of a point in bytes
     row_step: UInt32 = 0  # Length of a row in bytes
@@ -242,7 +245,8 @@ class JointState(Message):
 
     __ros_type__ = "sensor_msgs/msg/JointState"
     __ros_comment__ = (
-        "# This is a message that holds data to describe the state of a set of torque controlled joints.\n"
+        "# This is a message that holds data to describe the state of a set of torque\n"
+        "# controlled joints.\n"
         "#\n"
         "# The state of each joint (revolute or prismatic) is defined by:\n"
         "#  * the position of the joint (rad or m),\n"

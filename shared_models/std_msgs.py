@@ -144,7 +144,7 @@ class Float64(Message):
 
 
 class ColorRGBA(Message):
-    """A colour: red, green, blue and alpha, each from 0 to 1 (all zero, transparent, by default)."""
+    """A colour: red, green, blue and alpha, each 0 to 1 (all zero, transparent, by default)."""
 
     __ros_type__ = "std_msgs/msg/ColorRGBA"
 

@@ -19,7 +19,10 @@ class UVCoordinate(Message):
     """A texture coordinate of a marker's vertex, each in 0..1."""
 
     __ros_type__ = "visualization_msgs/msg/UVCoordinate"
-    __ros_comment__ = "# Location of the pixel as a ratio of the width of a 2D texture.\n# Values should be in range: [0.0-1.0]."
+    __ros_comment__ = (
+        "# Location of the pixel as a ratio of the width of a 2D texture.\n"
+        "# Values should be in range: [0.0-1.0]."
+    )
 
     u: Float32 = 0.0
     v: Float32 = 0.0
@@ -54,7 +57,13 @@ class Marker(Message):
     """
 
     __ros_type__ = "visualization_msgs/msg/Marker"
-    __ros_comment__ = "# See:\n#  - http://www.ros.org/wiki/rviz/DisplayTypes/Marker\n#  - http://www.ros.org/wiki/rviz/Tutorials/Markers%3A%20Basic%20Shapes\n#\n# for more information on using this message with rviz."
+    __ros_comment__ = (
+        "# See:\n"
+        "#  - http://www.ros.org/wiki/rviz/DisplayTypes/Marker\n"
+        "#  - http://www.ros.org/wiki/rviz/Tutorials/Markers%3A%20Basic%20Shapes\n"
+        "#\n"
+        "# for more information on using this message with rviz."
+    )
     __ros_constants__ = (
         "ARROW",
         "CUBE",
