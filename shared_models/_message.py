@@ -150,10 +150,13 @@ class Message(BaseModel):
 
     Non-finite floats are refused everywhere (JSON cannot carry them and no Skydeck position,
     setpoint or rate means anything as NaN), and unknown fields are refused so a typo in a
-    published frame is reported instead of silently dropped.
+    published frame is reported instead of silently dropped. Assignments are validated too, as
+    rclpy's field setters check theirs: ``msg.linear.x = float("nan")`` fails on that line, in
+    the user's code, instead of as a ``null`` that every reader refuses (a list appended in
+    place is checked where it is next validated, by the reader).
     """
 
-    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, validate_assignment=True)
 
     __ros_type__: ClassVar[str] = ""
     # The comment block `interface show` prints above the fields, as in the .msg file.
