@@ -7,6 +7,10 @@ for lookup by name (:func:`shared_models.get_interface`).
 
 Field types carry their ROS primitive through ``Annotated`` aliases (``Float64``, ``UInt32``...),
 which is what ``skydeck interface show`` prints.
+
+Messages also behave like ROS 1's (genpy) in Python: ``Point(1.0, 2.0, 3.0)`` fills the fields in
+order, ``msg.linear.x = 0.1`` mutates, and the ``.msg`` constants are class attributes
+(``Marker.ARROW``), never fields.
 """
 
 from __future__ import annotations
@@ -30,9 +34,12 @@ from pydantic import (
 __all__ = [
     "Bool",
     "Byte",
+    "ByteArray",
+    "Declared",
     "Float32",
     "Float64",
     "Int8",
+    "Int16",
     "Int32",
     "Int64",
     "Message",
@@ -43,7 +50,9 @@ __all__ = [
     "UInt8Array",
     "UInt16",
     "UInt32",
+    "UInt64",
     "all_interfaces",
+    "fixed_floats",
 ]
 
 
@@ -54,6 +63,12 @@ class RosPrimitive:
     name: str
 
 
+@dataclass(frozen=True)
+class Declared:
+    """Marks a field whose ``.msg`` file spells out its default (``bool read_only false``), so
+    ``interface show`` prints it even where it is the type's zero."""
+
+
 # Strict: JSON `true` is not the number 1 and "3" is not the integer 3 (lax pydantic would
 # coerce both); an integer is still a valid float, and nested messages still take dicts.
 Bool = Annotated[bool, Strict(), RosPrimitive("bool")]
@@ -61,9 +76,11 @@ Byte = Annotated[int, Strict(), RosPrimitive("byte"), Field(ge=0, le=0xFF)]
 UInt8 = Annotated[int, Strict(), RosPrimitive("uint8"), Field(ge=0, le=0xFF)]
 Int8 = Annotated[int, Strict(), RosPrimitive("int8"), Field(ge=-(2**7), le=2**7 - 1)]
 UInt16 = Annotated[int, Strict(), RosPrimitive("uint16"), Field(ge=0, le=0xFFFF)]
+Int16 = Annotated[int, Strict(), RosPrimitive("int16"), Field(ge=-(2**15), le=2**15 - 1)]
 Int32 = Annotated[int, Strict(), RosPrimitive("int32"), Field(ge=-(2**31), le=2**31 - 1)]
 UInt32 = Annotated[int, Strict(), RosPrimitive("uint32"), Field(ge=0, le=2**32 - 1)]
 Int64 = Annotated[int, Strict(), RosPrimitive("int64"), Field(ge=-(2**63), le=2**63 - 1)]
+UInt64 = Annotated[int, Strict(), RosPrimitive("uint64"), Field(ge=0, le=2**64 - 1)]
 Float32 = Annotated[float, Strict(), RosPrimitive("float32")]
 Float64 = Annotated[float, Strict(), RosPrimitive("float64")]
 String = Annotated[str, Strict(), RosPrimitive("string")]
@@ -91,17 +108,26 @@ def _bytes_to_base64(value: bytes) -> str:
     return base64.b64encode(value).decode("ascii")
 
 
-# uint8[] as Python bytes; base64 text in JSON (a JSON array of ints would be 3-4x bigger). A model
-# with such a field also sets ser_json_bytes/val_json_bytes="base64" in its config.
-UInt8Array = Annotated[
+# uint8[] and byte[] as Python bytes; base64 text in JSON (a JSON array of ints would be 3-4x
+# bigger). A model with such a field also sets ser_json_bytes/val_json_bytes="base64" in its config.
+_Base64Bytes = Annotated[
     bytes,
-    RosPrimitive("uint8[]"),
     BeforeValidator(_bytes_from),
     PlainSerializer(_bytes_to_base64, return_type=str, when_used="json"),
     WithJsonSchema(
-        {"type": "string", "contentEncoding": "base64", "description": "uint8[] as base64"}
+        {"type": "string", "contentEncoding": "base64", "description": "bytes as base64"}
     ),
 ]
+UInt8Array = Annotated[_Base64Bytes, RosPrimitive("uint8[]")]
+ByteArray = Annotated[_Base64Bytes, RosPrimitive("byte[]")]
+
+
+def fixed_floats(length: int) -> Any:
+    """The field of a fixed-size float array (``float64[36] covariance``): ``length`` zeros by
+    default, and any other length refused. Use as ``covariance: list[Float64] = fixed_floats(36)``.
+    """
+    return Field(default_factory=lambda: [0.0] * length, min_length=length, max_length=length)
+
 
 # Every registered interface by its full ROS name ("pkg/msg/Name" or "pkg/srv/Name").
 _INTERFACES: dict[str, type[Message] | type[ServiceType]] = {}
@@ -127,10 +153,13 @@ class Message(BaseModel):
 
     Non-finite floats are refused everywhere (JSON cannot carry them and no Skydeck position,
     setpoint or rate means anything as NaN), and unknown fields are refused so a typo in a
-    published frame is reported instead of silently dropped.
+    published frame is reported instead of silently dropped. Assignments are validated too, as
+    rclpy's field setters check theirs: ``msg.linear.x = float("nan")`` fails on that line, in
+    the user's code, instead of as a ``null`` that every reader refuses (a list appended in
+    place is checked where it is next validated, by the reader).
     """
 
-    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, validate_assignment=True)
 
     __ros_type__: ClassVar[str] = ""
     # The comment block `interface show` prints above the fields, as in the .msg file.
@@ -142,6 +171,36 @@ class Message(BaseModel):
         super().__init_subclass__(**kwargs)
         if cls.__dict__.get("__ros_type__"):
             _register(cls.__ros_type__, cls)
+
+    def __init__(self, /, *args: Any, **data: Any) -> None:
+        """Keywords as ROS 2 (``Point(x=1.0)``), or positional values in field order as ROS 1
+        (``Point(1.0, 2.0, 3.0)``); fields left out keep their defaults."""
+        if args:
+            data = self._positional(args, data)
+        self.__pydantic_validator__.validate_python(data, self_instance=self)
+
+    # Pydantic calls a model's own __init__ for every nested dict it validates when the class
+    # overrides it; this one adds nothing there (positional values come only from Python
+    # calls), so the flag keeps model_validate_json on pydantic's fast path.
+    __init__.__pydantic_base_init__ = True  # type: ignore[attr-defined]
+
+    @classmethod
+    def _positional(cls, args: tuple[Any, ...], data: dict[str, Any]) -> dict[str, Any]:
+        """The keyword form of a positional call, refused as genpy refuses it."""
+        names = tuple(cls.__pydantic_fields__)
+        if data:
+            raise TypeError(
+                f"{cls.__name__}() takes positional or keyword arguments, not both (as ROS 1 "
+                f"messages): got {len(args)} positional and {', '.join(data)}"
+            )
+        if len(args) > len(names):
+            fields = f" ({', '.join(names)})" if names else ""
+            plural = "" if len(names) == 1 else "s"
+            raise TypeError(
+                f"{cls.__name__}() takes at most {len(names)} positional argument{plural}"
+                f"{fields}, {len(args)} given"
+            )
+        return dict(zip(names, args, strict=False))
 
 
 class ServiceType:

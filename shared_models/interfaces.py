@@ -12,7 +12,7 @@ import difflib
 import typing
 from typing import Annotated, Any, ClassVar, get_args, get_origin
 
-from shared_models._message import Message, RosPrimitive, ServiceType, all_interfaces
+from shared_models._message import Declared, Message, RosPrimitive, ServiceType, all_interfaces
 from shared_models.errors import SkydeckError
 
 __all__ = ["UnknownInterfaceError", "get_interface", "interface_names", "interface_text"]
@@ -124,7 +124,8 @@ def _message_lines(cls: type[Message], *, comment: bool, depth: int = 0) -> list
     package = _package(cls.__ros_type__)
     for field_name, field in cls.model_fields.items():
         ros_type, nested = _field_type(cls, field_name, field.annotation, field.metadata, package)
-        default = _default_text(field.default)
+        declared = any(isinstance(m, Declared) for m in field.metadata)
+        default = _default_text(field.default, declared=declared)
         lines.append(f"{indent}{ros_type} {field_name}{default}")
         if nested is not None:
             lines += _message_lines(nested, comment=False, depth=depth + 1)
@@ -164,15 +165,26 @@ def _field_type(
         return _type_ref(annotation, package), annotation
     if get_origin(annotation) is list:
         (item,) = get_args(annotation)
+        brackets = _array_brackets(metadata)
         item_primitive = _primitive(item)
         if item_primitive is not None:
-            return item_primitive.name + "[]", None
+            return item_primitive.name + brackets, None
         if isinstance(item, type) and issubclass(item, Message):
-            return _type_ref(item, package) + "[]", item
+            return _type_ref(item, package) + brackets, item
     raise TypeError(
         f"{owner.__ros_type__} field {field_name} has no ROS type: annotate it with a shared_models "
         f"alias (Float64, UInt32...), a Message or a list of either"
     )
+
+
+def _array_brackets(metadata: list[Any]) -> str:
+    """``[36]`` for a fixed size, ``[<=1]`` for a bounded one, ``[]`` for any length."""
+    # Pydantic keeps Field(min_length=, max_length=) as annotated_types' MinLen and MaxLen.
+    least = next((m.min_length for m in metadata if hasattr(m, "min_length")), 0)
+    most = next((m.max_length for m in metadata if hasattr(m, "max_length")), None)
+    if most is None:
+        return "[]"
+    return f"[{most}]" if least == most else f"[<={most}]"
 
 
 def _package(ros_type: str) -> str:
@@ -186,11 +198,12 @@ def _type_ref(cls: type[Message], package: str) -> str:
     return short if type_package == package else f"{type_package}/{short}"
 
 
-def _default_text(default: Any) -> str:
-    # ROS prints the defaults a .msg file declares; ours are those that are not the type's zero.
-    if isinstance(default, bool | int | float) and default != 0:
+def _default_text(default: Any, *, declared: bool = False) -> str:
+    # ROS prints the defaults a .msg file declares: ours are those that are not the type's zero,
+    # and the zeros a field marks as Declared.
+    if isinstance(default, bool | int | float) and (default != 0 or declared):
         return " " + _value_text(default)
-    if isinstance(default, str) and default:
+    if isinstance(default, str) and (default or declared):
         return f' "{default}"'
     return ""
 

@@ -57,6 +57,12 @@ def test_interface_names() -> None:
     assert "std_srvs/srv/Trigger" in names
     assert not [name for name in names if name.endswith(("_Request", "_Response"))]
     assert interface_names("srv") == [
+        "rcl_interfaces/srv/DescribeParameters",
+        "rcl_interfaces/srv/GetParameterTypes",
+        "rcl_interfaces/srv/GetParameters",
+        "rcl_interfaces/srv/ListParameters",
+        "rcl_interfaces/srv/SetParameters",
+        "rcl_interfaces/srv/SetParametersAtomically",
         "ros_workshop/srv/FlyCommand",
         "std_srvs/srv/Empty",
         "std_srvs/srv/SetBool",
@@ -154,3 +160,97 @@ def test_a_field_without_ros_type_is_reported() -> None:
 
     with pytest.raises(TypeError, match="field value has no ROS type"):
         interface_text(Untyped)
+
+
+HEADER = """\
+std_msgs/Header header
+\tuint32 seq
+\tbuiltin_interfaces/Time stamp
+\t\tint32 sec
+\t\tuint32 nanosec
+\tstring frame_id"""
+
+
+def test_show_laser_scan() -> None:
+    text = interface_text("sensor_msgs/msg/LaserScan")
+    assert text.startswith("# Single scan from a planar laser range-finder\n")
+    fields = text.split("\n\n", 1)[1]
+    assert fields == HEADER + (
+        "\nfloat32 angle_min\nfloat32 angle_max\nfloat32 angle_increment\nfloat32 time_increment"
+        "\nfloat32 scan_time\nfloat32 range_min\nfloat32 range_max"
+        "\nfloat32[] ranges\nfloat32[] intensities"
+    )
+
+
+def test_show_odometry_nests_across_packages_with_fixed_arrays() -> None:
+    fields = interface_text("nav_msgs/msg/Odometry").split("\n\n", 1)[1]
+    vector = "\t\t\tfloat64 x\n\t\t\tfloat64 y\n\t\t\tfloat64 z\n"
+    assert fields == (
+        HEADER + "\nstring child_frame_id\n"
+        "geometry_msgs/PoseWithCovariance pose\n"
+        "\tPose pose\n"
+        "\t\tPoint position\n" + vector + "\t\tQuaternion orientation\n" + vector
+        + "\t\t\tfloat64 w 1\n"
+        "\tfloat64[36] covariance\n"
+        "geometry_msgs/TwistWithCovariance twist\n"
+        "\tTwist twist\n"
+        "\t\tVector3 linear\n" + vector + "\t\tVector3 angular\n" + vector
+        + "\tfloat64[36] covariance"
+    )
+
+
+def test_show_marker_constants_then_humble_fields() -> None:
+    text = interface_text("visualization_msgs/msg/Marker")
+    constants = "\n".join(
+        f"int32 {name}={value}"
+        for name, value in [
+            ("ARROW", 0),
+            ("CUBE", 1),
+            ("SPHERE", 2),
+            ("CYLINDER", 3),
+            ("LINE_STRIP", 4),
+            ("LINE_LIST", 5),
+            ("CUBE_LIST", 6),
+            ("SPHERE_LIST", 7),
+            ("POINTS", 8),
+            ("TEXT_VIEW_FACING", 9),
+            ("MESH_RESOURCE", 10),
+            ("TRIANGLE_LIST", 11),
+            ("ADD", 0),
+            ("MODIFY", 0),
+            ("DELETE", 2),
+            ("DELETEALL", 3),
+        ]
+    )
+    assert "\n\n" + constants + "\n\n" + HEADER + "\nstring ns\nint32 id\nint32 type\n" in text
+    for part in (
+        "\nbuiltin_interfaces/Duration lifetime\n\tint32 sec\n\tuint32 nanosec\nbool frame_locked\n",
+        "\ngeometry_msgs/Point[] points\n\tfloat64 x\n",
+        "\nstd_msgs/ColorRGBA[] colors\n\tfloat32 r\n\tfloat32 g\n\tfloat32 b\n\tfloat32 a\n",
+        "\nsensor_msgs/CompressedImage texture\n\tstd_msgs/Header header\n\t\tuint32 seq\n",
+        "\n\tstring format\n\tuint8[] data\nUVCoordinate[] uv_coordinates\n\tfloat32 u\n\tfloat32 v\n",
+        "\nstring text\nstring mesh_resource\nMeshFile mesh_file\n\tstring filename\n"
+        "\tuint8[] data\nbool mesh_use_embedded_materials",
+    ):
+        assert part in text
+    assert text.endswith("bool mesh_use_embedded_materials")
+
+
+def test_show_parameter_types_bounds_and_declared_defaults() -> None:
+    text = interface_text("rcl_interfaces/msg/ParameterDescriptor")
+    assert "\nbool read_only false\nbool dynamic_typing false\n" in text
+    assert "\nFloatingPointRange[<=1] floating_point_range\n\tfloat64 from_value\n" in text
+    assert "\nIntegerRange[<=1] integer_range\n\tint64 from_value\n\tint64 to_value\n\tuint64 step" in text
+    assert "\nbyte[] byte_array_value\nbool[] bool_array_value\n" in interface_text(
+        "rcl_interfaces/msg/ParameterValue"
+    )
+    assert interface_text("rcl_interfaces/srv/ListParameters") == (
+        "uint64 DEPTH_RECURSIVE=0\n\nstring[] prefixes\nuint64 depth\n---\n"
+        "ListParametersResult result\n\tstring[] names\n\tstring[] prefixes"
+    )
+    assert "\nfloat64[9] k\nfloat64[9] r\nfloat64[12] p\n" in interface_text(
+        "sensor_msgs/msg/CameraInfo"
+    )
+    assert interface_text("neato2_interfaces/msg/Bump") == (
+        "uint8 left_front\nuint8 left_side\nuint8 right_front\nuint8 right_side"
+    )
