@@ -88,6 +88,7 @@ ROS_FIELDS: dict[str, list[str]] = {
         "tour_length",
     ],
     "ros_workshop/msg/ControlState": ["header", "state", "setpoint", "message"],
+    "ros_workshop/msg/SimWorld": ["header", "id", "seed", "build", "boxes"],
 }
 
 MESSAGES = {name: cls for name, cls in all_interfaces().items() if issubclass(cls, Message)}
