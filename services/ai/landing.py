@@ -45,7 +45,8 @@ BOX_FOOTPRINT_RADIUS_M = BOX_SIZE_M / 2.0 * math.sqrt(2.0)
 DRONE_RADIUS_M = 0.4
 """The Iris's 0.25 m arms plus a 10-inch propeller's radius."""
 LANDING_MARGIN_M = 0.5
-"""Room for where the drone touches down: it lands where it is once within 0.3 m of the spot."""
+"""Room for where the drone touches down: it lands where it is once within 0.1 m of the spot,
+and may drift a little on the way down."""
 CLEARANCE_M = BOX_FOOTPRINT_RADIUS_M + DRONE_RADIUS_M + LANDING_MARGIN_M
 """Least distance from a landing spot to any box centre (2.31 m)."""
 

@@ -60,6 +60,9 @@ __all__ = ["AiNode", "AiSettings", "main"]
 DEFAULT_PORT = 8004
 TAKE_OFF_DONE_Z_M = 2.5
 VISIT_RADIUS_M = 0.3
+# Control lands where the drone is when asked: the AI asks once the drone is this close to its
+# landing spot (and so nearly stopped there), keeping the touchdown clear of the boxes.
+LANDING_RADIUS_M = 0.1
 HOME_XY_M = START_XY_M
 STATUS_PERIOD_S = 1.0
 STALE_POSE_S = 1.0
@@ -268,7 +271,7 @@ class AiNode(Node):
             self._update(
                 state="landing", target=-1, tour=[], message=f"all boxes visited: landing {where} at ({spot[0]:.1f}, {spot[1]:.1f})"
             )
-            await self._fly_to(spot)
+            await self._fly_to(spot, within_m=LANDING_RADIUS_M)
         response = await self._call(self.land, Trigger.Request())
         self._check(response.success, response.message, "land")
         sent_s = time.monotonic()
@@ -278,8 +281,8 @@ class AiNode(Node):
                 await self._call(self.land, Trigger.Request())
                 sent_s = time.monotonic()
 
-    async def _fly_to(self, target: Point2) -> None:
-        """One fly command, then wait until the drone is within the visit radius.
+    async def _fly_to(self, target: Point2, *, within_m: float = VISIT_RADIUS_M) -> None:
+        """One fly command, then wait until the drone is within ``within_m`` of the target.
 
         The command is sent again only if control stops reporting it as its goal (a restarted
         control starts with none): never while control is on its way.
@@ -292,7 +295,7 @@ class AiNode(Node):
 
         while True:
             position = await self._fresh_position()
-            if math.hypot(position.x - target[0], position.y - target[1]) <= VISIT_RADIUS_M:
+            if math.hypot(position.x - target[0], position.y - target[1]) <= within_m:
                 return
             if self._control_forgot(sent_s, flying_there):
                 self.get_logger().warning("control is not flying to (%.1f, %.1f) (was it restarted?): sending it again", *target)
