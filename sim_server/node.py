@@ -18,11 +18,11 @@ import math
 import secrets
 import time
 
-from pydantic import Field, ValidationError, field_validator
+from pydantic import Field, field_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 from services.runtime import Node, NodeSettings, spin
-from services.runtime.settings import settings_with_default_port
+from services.runtime.settings import settings_from_flags, settings_with_default_port
 from shared_models.builtin_interfaces import Time
 from shared_models.geometry_msgs import Point, Pose, PoseArray, PoseStamped, Quaternion, Twist
 from shared_models.mavros_msgs import PositionTarget, State
@@ -247,12 +247,5 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seed", help="random seed; the same seed gives the same world")
     parser.add_argument("--boxes", help=f"number of boxes, 0-{MAX_BOXES} (default {DEFAULT_BOXES})")
     parser.add_argument("--speed", help="times real time, or 'max' (default 1)")
-    args = parser.parse_args(argv)
-    overrides = {key: value for key, value in vars(args).items() if value is not None}
-    try:
-        sim = SimSettings(**overrides)
-    except ValidationError as error:
-        first = error.errors()[0]
-        parser.error(f"--{first['loc'][0]}: {first['msg']}")
-    spin(SimulatorNode(sim))
+    spin(SimulatorNode(settings_from_flags(parser, SimSettings, argv)))
     return 0

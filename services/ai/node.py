@@ -26,7 +26,6 @@ import time
 from collections.abc import Callable
 from typing import TypeVar
 
-from pydantic import ValidationError
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 from services.ai.landing import (
@@ -40,7 +39,7 @@ from services.ai.planner import plan_tour
 from services.ai.progress import ProgressStore, WorldProgress, default_state_dir
 from services.ai.world import WorldTracker
 from services.runtime import Client, Node, NodeSettings, ServiceError, ServiceUnavailableError, spin
-from services.runtime.settings import settings_with_default_port
+from services.runtime.settings import settings_from_flags, settings_with_default_port
 from shared_models import Message
 from shared_models.geometry_msgs import Point, Polygon, PoseStamped
 from shared_models.ros_workshop import (
@@ -393,12 +392,5 @@ def main(argv: list[str] | None = None) -> int:
         "--landing",
         help=f"where to land once every box is visited: {' or '.join(LANDING_POLICIES)} (default {DEFAULT_LANDING})",
     )
-    args = parser.parse_args(argv)
-    overrides = {key: value for key, value in vars(args).items() if value is not None}
-    try:
-        ai = AiSettings(**overrides)
-    except ValidationError as error:
-        first = error.errors()[0]
-        parser.error(f"--{first['loc'][0]}: {first['msg']}")
-    spin(AiNode(ai=ai))
+    spin(AiNode(ai=settings_from_flags(parser, AiSettings, argv)))
     return 0

@@ -2,13 +2,24 @@
 
 from __future__ import annotations
 
+import argparse
 import os
 import socket
+from typing import TypeVar
 
-from pydantic import Field
+from pydantic import Field, ValidationError
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
-__all__ = ["DEFAULT_CORE_URL", "MAX_MESSAGE_BYTES", "NodeSettings", "reachable_host", "settings_with_default_port"]
+__all__ = [
+    "DEFAULT_CORE_URL",
+    "MAX_MESSAGE_BYTES",
+    "NodeSettings",
+    "reachable_host",
+    "settings_from_flags",
+    "settings_with_default_port",
+]
+
+S = TypeVar("S", bound=BaseSettings)
 
 DEFAULT_CORE_URL = "http://127.0.0.1:8000"
 # Frames and bodies above this are refused (WebSocket close 1009, HTTP 413): a camera frame is
@@ -57,3 +68,15 @@ def reachable_host(host: str) -> str:
     if host in ("0.0.0.0", "::", ""):
         return socket.gethostname()
     return host
+
+
+def settings_from_flags(parser: argparse.ArgumentParser, settings_type: type[S], argv: list[str] | None) -> S:
+    """A node's own settings: the flags given in ``argv`` over its ``SKYDECK_*`` variables; a
+    bad value exits with the parser's one-line error naming the flag."""
+    args = parser.parse_args(argv)
+    overrides = {key: value for key, value in vars(args).items() if value is not None}
+    try:
+        return settings_type(**overrides)
+    except ValidationError as error:
+        first = error.errors()[0]
+        parser.error(f"--{first['loc'][0]}: {first['msg']}")

@@ -57,3 +57,17 @@ def test_finishing_legs_per_policy() -> None:
     for arriving_from in [(0.0, 0.0), (20.0, 20.0), (3.0, -9.0)]:
         spot = landing_spot(boxes[0], boxes, arriving_from=arriving_from)
         assert spot is not None and math.dist(spot, boxes[0]) == pytest.approx(beside[0])
+
+
+def test_the_policy_is_a_setting_with_a_flag(monkeypatch, capsys) -> None:
+    from services.ai.node import AiSettings, main
+
+    assert AiSettings().landing == "beside_last_box"
+    monkeypatch.setenv("SKYDECK_AI_LANDING", "home")
+    assert AiSettings().landing == "home"
+    with pytest.raises(SystemExit) as exited:
+        main(["--landing", "nowhere"])
+    assert exited.value.code == 2
+    assert capsys.readouterr().err.splitlines()[-1] == (
+        "skydeck run ai: error: --landing: Input should be 'beside_last_box' or 'home'"
+    )
