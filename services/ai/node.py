@@ -230,11 +230,11 @@ class AiNode(Node):
                 world.id, saved.boxes, len(boxes),
             )
             saved = None
-        if saved is not None and saved.done and again:
-            self.get_logger().info("world %s was done: flying it again, as asked", world.id)
-            saved = None
-        if saved is None:
-            self.get_logger().info("new world %s: %d boxes", world.id, len(boxes))
+        if saved is None or (saved.done and again):
+            if saved is None:
+                self.get_logger().info("new world %s: %d boxes", world.id, len(boxes))
+            else:
+                self.get_logger().info("world %s was done: a new tour of its %d boxes, as asked", world.id, len(boxes))
             progress = WorldProgress(world=world.id, boxes=len(boxes))
             self.store.save(progress)
             return progress
