@@ -9,7 +9,12 @@ from pathlib import Path
 
 import pytest
 
-from services.bench.mission import GroundTrack, brute_force_length, nearest_first_length, optimal_flight_m
+from services.bench.mission import (
+    GroundTrack,
+    brute_force_length,
+    nearest_first_length,
+    optimal_flight_m,
+)
 from services.bench.report import Result, format_table
 from services.bench.runner import Family, Progress, Trial, run_families
 from services.bench.sink import Sink, percentile
