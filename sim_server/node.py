@@ -3,8 +3,9 @@
     skydeck run sim --seed 1 --boxes 8 --speed max
 
 Publishes (sim-time rates) ``/drone/pose`` 60 Hz, ``/clock`` with every pose, ``/simulator/boxes``
-10 Hz (latched), ``/drone/state`` 5 Hz, and ``/simulator/camera`` 5 Hz of wall time only while
-someone subscribes. Follows ``/drone/setpoint`` and, when no setpoint stream is active,
+10 Hz (latched), ``/drone/state`` 5 Hz, ``/simulator/world`` (latched) once per build of the world
+(at start and at every reset: a new random id each time), and ``/simulator/camera`` 5 Hz of wall
+time only while someone subscribes. Follows ``/drone/setpoint`` and, when no setpoint stream is active,
 ``/drone/cmd_vel``. Serves ``/simulator/reset``. Bad input is refused with a warning and never
 reaches the physics.
 """
@@ -14,16 +15,18 @@ from __future__ import annotations
 import argparse
 import asyncio
 import math
+import secrets
 import time
 
-from pydantic import Field, ValidationError, field_validator
+from pydantic import Field, field_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 from services.runtime import Node, NodeSettings, spin
-from services.runtime.settings import process_settings
+from services.runtime.settings import process_settings, settings_from_flags
 from shared_models.builtin_interfaces import Time
 from shared_models.geometry_msgs import Point, Pose, PoseArray, PoseStamped, Quaternion, Twist
 from shared_models.mavros_msgs import PositionTarget, State
+from shared_models.ros_workshop import SimWorld
 from shared_models.sensor_msgs import CompressedImage
 from shared_models.std_msgs import Header
 from shared_models.std_srvs import Trigger, TriggerRequest, TriggerResponse
@@ -84,6 +87,7 @@ class SimulatorNode(Node):
         self.boxes_publisher = self.create_publisher(
             PoseArray, "/simulator/boxes", 10, latched=True
         )
+        self.world_publisher = self.create_publisher(SimWorld, "/simulator/world", 1, latched=True)
         self.clock_publisher = self.create_publisher(Time, "/clock", 10)
         self.camera_publisher = self.create_publisher(CompressedImage, "/simulator/camera", 2)
         self.create_subscription(PositionTarget, "/drone/setpoint", self.on_setpoint, 10)
@@ -92,9 +96,11 @@ class SimulatorNode(Node):
         self.create_timer(CAMERA_PERIOD_S, self.publish_camera, wall_clock=True)
         self._last_warning = {"setpoint": -math.inf, "cmd_vel": -math.inf, "lag": -math.inf}
         self.resets = 0
+        self.world_info = self._publish_world()
         speed = "max" if self.sim.speed is None else f"{self.sim.speed:g}x"
         self.get_logger().info(
-            "world seed %d, %d boxes, speed %s", self.world.seed, self.sim.boxes, speed
+            "world %s: seed %d, %d boxes, speed %s",
+            self.world_info.id, self.world.seed, self.sim.boxes, speed,
         )
 
     # -- inputs -------------------------------------------------------------------------------
@@ -115,10 +121,15 @@ class SimulatorNode(Node):
     def on_reset(self, request: TriggerRequest) -> TriggerResponse:
         self.world.reset()
         self.resets += 1
+        self.world_info = self._publish_world()
         self._publish_boxes(self._header())
+        self.get_logger().info("world %s: reset %d, %d new boxes", self.world_info.id, self.resets, self.sim.boxes)
         return TriggerResponse(
             success=True,
-            message=f"world reset: drone at the start, {self.sim.boxes} new boxes dropped",
+            message=(
+                f"world reset: drone at the start, {self.sim.boxes} new boxes dropped"
+                f" (world {self.world_info.id})"
+            ),
         )
 
     def _warn(self, kind: str, text: str) -> None:
@@ -132,6 +143,19 @@ class SimulatorNode(Node):
 
     def _header(self) -> Header:
         return Header(stamp=Time.from_seconds(self.world.time_s), frame_id="map")
+
+    def _publish_world(self) -> SimWorld:
+        """Announce a new build of the world: a random id that no other build has (progress
+        saved for one build, the AI's, must never be taken for another, even of the same seed)."""
+        info = SimWorld(
+            header=self._header(),
+            id=secrets.token_hex(8),
+            seed=self.world.seed,
+            build=self.resets,
+            boxes=self.sim.boxes,
+        )
+        self.world_publisher.publish(info)
+        return info
 
     def _publish_tick(self, steps: int) -> None:
         """Publish what is due after the physics reached ``steps``."""
@@ -223,12 +247,5 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seed", help="random seed; the same seed gives the same world")
     parser.add_argument("--boxes", help=f"number of boxes, 0-{MAX_BOXES} (default {DEFAULT_BOXES})")
     parser.add_argument("--speed", help="times real time, or 'max' (default 1)")
-    args = parser.parse_args(argv)
-    overrides = {key: value for key, value in vars(args).items() if value is not None}
-    try:
-        sim = SimSettings(**overrides)
-    except ValidationError as error:
-        first = error.errors()[0]
-        parser.error(f"--{first['loc'][0]}: {first['msg']}")
-    spin(SimulatorNode(sim))
+    spin(SimulatorNode(settings_from_flags(parser, SimSettings, argv)))
     return 0

@@ -1,8 +1,15 @@
-"""The AI (the workshop's final task): take off, fly over every box exactly once in the
-shortest order it can find, land. Progress is saved per world, so a restarted AI carries on.
+"""The AI (the workshop's final task): take off, fly over every box exactly once, land beside the
+last one; the whole flight, take-off to touchdown, as short as it can be.
 
 One fly command per box, sent when the drone has reached the previous one (within 0.3 m
 horizontally): never spamming control. ``/ai/status`` reports every change and once a second.
+Control's refusals are read by their reason (:class:`shared_models.ros_workshop.Refusal`), never
+by their text.
+
+Progress is saved per world (``/simulator/world``'s id, a new one for every build of the world),
+so an AI restarted in the middle of a mission carries on without visiting a box twice, a
+finished world stays finished, and a new world (a reset, a restarted simulator, another launch
+of the same seed) gets a new tour, started by itself.
 
 Control's services are called directly, but where they live is asked of the core (once, and again
 after control moved). When that cannot be answered (the core is restarting, or control has not
@@ -19,58 +26,100 @@ import time
 from collections.abc import Callable
 from typing import TypeVar
 
+from pydantic_settings import BaseSettings, SettingsConfigDict
+
+from services.ai.landing import (
+    DEFAULT_LANDING,
+    LANDING_POLICIES,
+    LandingPolicy,
+    finishing_legs,
+    landing_spot,
+)
 from services.ai.planner import plan_tour
-from services.ai.progress import ProgressStore, default_state_dir, world_key
+from services.ai.progress import ProgressStore, WorldProgress, default_state_dir
+from services.ai.world import WorldTracker
 from services.runtime import Client, Node, NodeSettings, ServiceError, ServiceUnavailableError, spin
-from services.runtime.settings import process_settings
+from services.runtime.settings import process_settings, settings_from_flags
 from shared_models import Message
+from shared_models.errors import SkydeckError
 from shared_models.geometry_msgs import Point, Polygon, PoseStamped
-from shared_models.ros_workshop import AiStatus, ControlState, FlyCommand
+from shared_models.ros_workshop import (
+    AiStatus,
+    ControlState,
+    FlyCommand,
+    Refusal,
+    SimWorld,
+    refusal_reason,
+)
 from shared_models.std_msgs import Header
 from shared_models.std_srvs import Trigger, TriggerRequest, TriggerResponse
-from sim_server.limits import START_XY_M
+from sim_server.limits import ON_GROUND_Z_M, START_XY_M
 
-__all__ = ["AiNode", "main"]
+__all__ = ["AiNode", "AiSettings", "main"]
 
 DEFAULT_PORT = 8004
 TAKE_OFF_DONE_Z_M = 2.5
 VISIT_RADIUS_M = 0.3
+# Control lands where the drone is when asked: the AI asks once the drone is this close to its
+# landing spot (and so nearly stopped there), keeping the touchdown clear of the boxes.
+LANDING_RADIUS_M = 0.1
 HOME_XY_M = START_XY_M
 STATUS_PERIOD_S = 1.0
 STALE_POSE_S = 1.0
 _RETRY_S = 1.0
 # A service nobody could locate is looked up again after this pause (wait_for_service polls on).
 _UNAVAILABLE_PAUSE_S = 0.2
-# Boxes count as at rest (and their world key as final) when this many consecutive box messages
-# agree within the tolerance: falling boxes would give a plan, and a key, of a world in motion.
-SETTLED_MESSAGES = 3
-SETTLED_TOLERANCE_M = 0.02
 # Control reporting another goal than the AI's for this long means it lost the command (it was
 # restarted): the command is sent again. Long enough for control's state to catch up with a call.
 CONTROL_FORGOT_S = 1.5
+# Refusals that mean "already done": the mission carries on as if the call had succeeded.
+_NOTHING_TO_DO = {Refusal.SAME_TARGET, Refusal.ALREADY_AIRBORNE, Refusal.ALREADY_LANDING, Refusal.ALREADY_LANDED}
+# Refusals that no repetition can change: the mission ends in error.
+_CANNOT_FLY = {Refusal.OUTSIDE_ARENA, Refusal.NOT_FINITE}
 
 R = TypeVar("R", bound=Message)
+Point2 = tuple[float, float]
+
+
+class AiSettings(BaseSettings):
+    """The mission's options: ``skydeck run ai --landing ...`` or ``SKYDECK_AI_*`` variables."""
+
+    model_config = SettingsConfigDict(env_prefix="SKYDECK_AI_", extra="ignore")
+
+    landing: LandingPolicy = DEFAULT_LANDING
+    """beside_last_box: land at the nearest clear spot beside the last box; home: fly back to the
+    start and land there (the tour is then planned closed)."""
+
+
+class MissionError(SkydeckError):
+    """The mission cannot go on (control refused a command that no retry can change)."""
 
 
 class AiNode(Node):
-    """The mission as one task; ``/ai/start`` restarts it, ``/ai/stop`` hovers."""
+    """The mission as one task; ``/ai/start`` (re)starts it, ``/ai/stop`` hovers."""
 
-    def __init__(self, settings: NodeSettings | None = None, *, store: ProgressStore | None = None) -> None:
+    def __init__(
+        self,
+        settings: NodeSettings | None = None,
+        *,
+        ai: AiSettings | None = None,
+        store: ProgressStore | None = None,
+    ) -> None:
         super().__init__("ai", settings=settings or process_settings(NodeSettings, port=DEFAULT_PORT))
-        self.store = store or ProgressStore(default_state_dir())
+        self.ai = ai or AiSettings()
+        self.store = store or ProgressStore(default_state_dir(), warn=self.get_logger().warning)
         self.drone_position: Point | None = None
-        self.boxes: list[tuple[float, float]] = []
+        self.tracker = WorldTracker()
         self._pose_wall_s = -math.inf
         self._pose_event = asyncio.Event()
-        self._boxes_event = asyncio.Event()  # set while the latest boxes are at rest
-        self._recent_boxes: list[list[tuple[float, float, float]]] = []
         self.status = AiStatus(state="idle", target=-1)
         self.take_off = self.create_client(Trigger, "/control/take_off")
         self.fly = self.create_client(FlyCommand, "/control/fly")
         self.land = self.create_client(Trigger, "/control/land")
         self.status_publisher = self.create_publisher(AiStatus, "/ai/status", 10, latched=True)
         self.create_subscription(PoseStamped, "/drone/pose", self.on_pose, 1)
-        self.create_subscription(Polygon, "/perception/boxes", self.on_boxes, 1)
+        self.create_subscription(Polygon, "/perception/boxes", self.tracker.on_boxes, 1)
+        self.create_subscription(SimWorld, "/simulator/world", self.on_world, 1)
         self.control_state: ControlState | None = None
         self.create_subscription(ControlState, "/control/state", self.on_control_state, 1)
         self.create_service(Trigger, "/ai/start", self.handle_start)
@@ -85,22 +134,16 @@ class AiNode(Node):
         self._pose_wall_s = time.monotonic()
         self._pose_event.set()
 
-    def on_boxes(self, msg: Polygon) -> None:
-        self._recent_boxes = [*self._recent_boxes[1 - SETTLED_MESSAGES :], [(p.x, p.y, p.z) for p in msg.points]]
-        if _at_rest(self._recent_boxes):
-            self.boxes = [(p.x, p.y) for p in msg.points]
-            self._boxes_event.set()
-        else:
-            self._boxes_event.clear()
+    def on_world(self, msg: SimWorld) -> None:
+        if self.tracker.on_world(msg) and self._mission is not None:
+            self.get_logger().info("the simulator built a new world (%s): a new tour", msg.id)
+            self._start_mission()
 
     def on_control_state(self, msg: ControlState) -> None:
         self.control_state = msg
 
     async def handle_start(self, request: TriggerRequest) -> TriggerResponse:
-        # Plan on boxes that arrive from now on: after a simulator reset, the new world's.
-        self._recent_boxes.clear()
-        self._boxes_event.clear()
-        self._start_mission()
+        self._start_mission(again=True)
         return TriggerResponse(success=True, message="Mission (re)started.")
 
     async def handle_stop(self, request: TriggerRequest) -> TriggerResponse:
@@ -119,68 +162,127 @@ class AiNode(Node):
         await super().start()
         self._start_mission()  # as in the seed: the mission starts by itself once the world is ready
 
-    def _start_mission(self) -> None:
+    def _start_mission(self, *, again: bool = False) -> None:
+        """(Re)start the mission task. ``again``: asked for by a user, so a world whose mission
+        is finished is flown once more; otherwise a finished world stays finished."""
         if self._mission is not None:
             self._mission.cancel()
-        self._mission = asyncio.get_running_loop().create_task(self._run_mission())
+        self._mission = asyncio.get_running_loop().create_task(self._run_mission(again))
 
-    async def _run_mission(self) -> None:
+    async def _run_mission(self, again: bool) -> None:
         try:
-            await self._mission_steps()
+            await self._mission_steps(again)
         except asyncio.CancelledError:
             raise
-        except ServiceError as error:
+        except (ServiceError, MissionError) as error:
             self.get_logger().error("mission failed: %s", error)
             self._update(state="error", message=str(error))
 
-    async def _mission_steps(self) -> None:
-        self._update(state="idle", message="waiting for the drone pose and the boxes (at rest)")
-        await self._boxes_event.wait()
+    async def _mission_steps(self, again: bool) -> None:
+        self._update(state="idle", target=-1, message="waiting for the world, the drone pose and the boxes (at rest)")
+        await self.tracker.ready.wait()
+        world, boxes = self.tracker.world, list(self.tracker.boxes)
+        if world is None:
+            raise RuntimeError("boxes ready without a world")
+        progress = self._progress_of(world, boxes, again=again)
+        visited = progress.visited
+        self._update(visited=list(visited), tour=[], remaining=len(boxes) - len(visited))
+        if progress.done:
+            self._update(state="done", message=f"world {world.id} is done: {len(visited)} boxes visited")
+            return
         position = await self._fresh_position()
-        boxes = list(self.boxes)
-        key = world_key(boxes)
-        visited = [i for i in self.store.load(key) if 0 <= i < len(boxes)]
-        if visited:
-            self.get_logger().info("resuming: %d of %d boxes already visited in this world", len(visited), len(boxes))
-        self._update(visited=visited)
-        if position.z < TAKE_OFF_DONE_Z_M:
-            await self.take_off.wait_for_service()
-            if position.z <= 0.1:
-                response = await self._call(self.take_off, Trigger.Request())
-                if not response.success:
-                    self.get_logger().warning("take-off refused: %s", response.message)
-            self._update(state="taking_off", message="taking off")
-            while (await self._fresh_position()).z < TAKE_OFF_DONE_Z_M:
-                pass
         remaining = [i for i in range(len(boxes)) if i not in visited]
-        position = await self._fresh_position()
-        tour = plan_tour((position.x, position.y), [boxes[i] for i in remaining])
-        order = [remaining[i] for i in tour.order]
-        self._update(state="flying", tour=order, tour_length=tour.length_m, remaining=len(order))
-        self.get_logger().info("tour of %d boxes, %.1f m (%s)", len(order), tour.length_m, "optimal" if tour.optimal else "2-opt")
-        for index in order:
-            target = boxes[index]
-            self._update(target=index, message=f"flying to box {index} at ({target[0]:.1f}, {target[1]:.1f})")
-            await self._fly_to(target)
-            visited.append(index)
-            self.store.save(key, visited)
-            left = [i for i in order if i not in visited]
-            self._update(visited=list(visited), tour=left, remaining=len(left))
-        # Boxes are 2 m tall: landing over the last one would set the drone down on its roof.
-        # Return to the start, which the world keeps clear of boxes, and land there.
-        self._update(state="landing", target=-1, message="all boxes visited: returning to the start to land")
-        await self._fly_to(HOME_XY_M)
-        await self._call(self.land, Trigger.Request())
+        came_from: Point2 = (position.x, position.y)
+        if remaining:
+            await self._take_off()
+            position = await self._fresh_position()
+            legs = finishing_legs(self.ai.landing, boxes, home=HOME_XY_M)
+            tour = plan_tour(
+                (position.x, position.y), [boxes[i] for i in remaining], finish=[legs[i] for i in remaining]
+            )
+            order = [remaining[i] for i in tour.order]
+            self._update(state="flying", tour=order, tour_length=tour.length_m, remaining=len(order))
+            self.get_logger().info(
+                "tour of %d boxes, landing %s: %.1f m (%s)",
+                len(order), self.ai.landing.replace("_", " "), tour.length_m, "optimal" if tour.optimal else "2-opt",
+            )
+            came_from = (position.x, position.y)
+            for index in order:
+                target = boxes[index]
+                self._update(target=index, message=f"flying to box {index} at ({target[0]:.1f}, {target[1]:.1f})")
+                await self._fly_to(target)
+                visited.append(index)
+                self.store.save(progress)
+                left = [i for i in order if i not in visited]
+                self._update(visited=list(visited), tour=left, remaining=len(left))
+                if left:
+                    came_from = target
+        await self._land(boxes, visited, came_from)
+        progress.done = True
+        self.store.save(progress)
+        self._update(state="done", target=-1, message=f"visited {len(visited)} boxes")
+
+    def _progress_of(self, world: SimWorld, boxes: list[Point2], *, again: bool) -> WorldProgress:
+        """This world's saved progress, or a new one; says which in one log line."""
+        saved = self.store.load(world.id)
+        if saved is not None and saved.boxes != len(boxes):
+            self.get_logger().warning(
+                "world %s: saved progress is for %d boxes, perception sees %d: starting afresh",
+                world.id, saved.boxes, len(boxes),
+            )
+            saved = None
+        if saved is None or (saved.done and again):
+            if saved is None:
+                self.get_logger().info("new world %s: %d boxes", world.id, len(boxes))
+            else:
+                self.get_logger().info("world %s was done: a new tour of its %d boxes, as asked", world.id, len(boxes))
+            progress = WorldProgress(world=world.id, boxes=len(boxes))
+            self.store.save(progress)
+            return progress
+        saved.visited = [i for i in dict.fromkeys(saved.visited) if 0 <= i < len(boxes)]
+        self.get_logger().info("resuming world %s: %d of %d visited", world.id, len(saved.visited), len(boxes))
+        return saved
+
+    async def _take_off(self) -> None:
+        """Take off (unless already in the air) and wait until z >= TAKE_OFF_DONE_Z_M. Asks
+        again while the drone is on the ground and control still says ``landed`` (it refused
+        for want of a pose, or it was restarted)."""
+        if (await self._fresh_position()).z >= TAKE_OFF_DONE_Z_M:
+            return
+        await self.take_off.wait_for_service()
+        self._update(state="taking_off", message="taking off")
+        sent_s: float | None = None
+        while (position := await self._fresh_position()).z < TAKE_OFF_DONE_Z_M:
+            if position.z > ON_GROUND_Z_M:
+                continue  # climbing
+            if sent_s is not None and not self._control_forgot(sent_s, lambda state: state.state != "landed"):
+                continue
+            response = await self._call(self.take_off, Trigger.Request())
+            sent_s = time.monotonic()
+            self._check(response.success, response.message, "take-off")
+
+    async def _land(self, boxes: list[Point2], visited: list[int], came_from: Point2) -> None:
+        """Fly to where the policy lands, land there, and wait for the touchdown."""
+        if (await self._fresh_position()).z > ON_GROUND_Z_M:
+            spot = HOME_XY_M
+            if self.ai.landing == "beside_last_box" and visited:
+                spot = landing_spot(boxes[visited[-1]], boxes, arriving_from=came_from) or HOME_XY_M
+            where = "at the start" if spot == HOME_XY_M else "beside the last box"
+            self._update(
+                state="landing", target=-1, tour=[], message=f"all boxes visited: landing {where} at ({spot[0]:.1f}, {spot[1]:.1f})"
+            )
+            await self._fly_to(spot, within_m=LANDING_RADIUS_M)
+        response = await self._call(self.land, Trigger.Request())
+        self._check(response.success, response.message, "land")
         sent_s = time.monotonic()
-        while (await self._fresh_position()).z > 0.1:
+        while (await self._fresh_position()).z > ON_GROUND_Z_M:
             if self._control_forgot(sent_s, lambda state: state.state in ("landing", "landed")):
                 self.get_logger().warning("control is not landing (was it restarted?): asking again")
                 await self._call(self.land, Trigger.Request())
                 sent_s = time.monotonic()
-        self._update(state="done", message=f"visited {len(visited)} boxes")
 
-    async def _fly_to(self, target: tuple[float, float]) -> None:
-        """One fly command, then wait until the drone is within the visit radius.
+    async def _fly_to(self, target: Point2, *, within_m: float = VISIT_RADIUS_M) -> None:
+        """One fly command, then wait until the drone is within ``within_m`` of the target.
 
         The command is sent again only if control stops reporting it as its goal (a restarted
         control starts with none): never while control is on its way.
@@ -193,20 +295,33 @@ class AiNode(Node):
 
         while True:
             position = await self._fresh_position()
-            if math.hypot(position.x - target[0], position.y - target[1]) <= VISIT_RADIUS_M:
+            if math.hypot(position.x - target[0], position.y - target[1]) <= within_m:
                 return
             if self._control_forgot(sent_s, flying_there):
                 self.get_logger().warning("control is not flying to (%.1f, %.1f) (was it restarted?): sending it again", *target)
                 await self._send_fly(target)
                 sent_s = time.monotonic()
 
-    async def _send_fly(self, target: tuple[float, float]) -> None:
+    async def _send_fly(self, target: Point2) -> None:
         while True:
             response = await self._call(self.fly, FlyCommand.Request(x=target[0], y=target[1]))
-            if response.success or response.message.startswith("Already flying"):
+            if self._check(response.success, response.message, f"fly to ({target[0]:.1f}, {target[1]:.1f})"):
                 return
-            self.get_logger().warning("fly refused: %s; retrying in %.0f s", response.message, _RETRY_S)
             await asyncio.sleep(_RETRY_S)
+
+    def _check(self, success: bool, message: str, what: str) -> bool:
+        """Whether a command's answer lets the mission go on: accepted, or refused because it was
+        done already. Raises MissionError for a refusal no retry can change; else (the drone not
+        in the air yet, no pose, a reason this AI does not know) logs it and returns False."""
+        if success:
+            return True
+        reason = refusal_reason(message)
+        if reason in _NOTHING_TO_DO:
+            return True
+        if reason in _CANNOT_FLY:
+            raise MissionError(f"{what} refused: {message}")
+        self.get_logger().warning("%s refused: %s; asking again", what, message)
+        return False
 
     async def _call(self, client: Client[R], request: Message) -> R:
         """``client.call(request)``; while nobody can say where the service is (the core is
@@ -271,20 +386,12 @@ class AiNode(Node):
         self.status_publisher.publish(self.status.model_copy())
 
 
-def _at_rest(recent: list[list[tuple[float, float, float]]]) -> bool:
-    """Whether the last few box messages agree: same boxes, none moved more than the tolerance."""
-    if len(recent) < SETTLED_MESSAGES:
-        return False
-    first = recent[0]
-    return all(
-        len(boxes) == len(first)
-        and all(math.dist(a, b) <= SETTLED_TOLERANCE_M for a, b in zip(boxes, first, strict=True))
-        for boxes in recent[1:]
-    )
-
-
 def main(argv: list[str] | None = None) -> int:
-    """``skydeck run ai``."""
-    argparse.ArgumentParser(prog="skydeck run ai", description="The box-visiting mission.").parse_args(argv)
-    spin(AiNode())
+    """``skydeck run ai [--landing beside_last_box|home]``."""
+    parser = argparse.ArgumentParser(prog="skydeck run ai", description="The box-visiting mission.")
+    parser.add_argument(
+        "--landing",
+        help=f"where to land once every box is visited: {' or '.join(LANDING_POLICIES)} (default {DEFAULT_LANDING})",
+    )
+    spin(AiNode(ai=settings_from_flags(parser, AiSettings, argv)))
     return 0

@@ -1,25 +1,35 @@
 """The mission's progress on disk, per world, so a restarted AI never visits a box twice.
 
-A world is known by its boxes: the key is a digest of their positions rounded to a metre (the
-boxes settle within centimetres run to run; a reset drops a new set, and so a new key). Each
-write goes to a temporary file that replaces the old one atomically (fsync, then rename), so a
-crash at any moment leaves either the old progress or the new, never a torn file.
+A world is one *build* of the simulator's world, known by the random id the simulator publishes
+on ``/simulator/world`` (a new one at start, at every reset, and when a restarted simulator
+builds its world again): a rerun of the same seed is a new world and gets a new tour, while an
+AI restarted in the middle of a mission finds its world's progress and carries on.
+
+The file (``ai_progress.json`` in :func:`default_state_dir`) keeps the last ``KEEP_WORLDS``
+worlds, most recent last. Each write goes to a temporary file that replaces the old one
+atomically (fsync, then rename), so a crash at any moment leaves either the old progress or the
+new, never a torn file. A file that cannot be read or is not ours is ignored with a warning (the
+next save replaces it); a save that fails is reported and the mission goes on.
 """
 
 from __future__ import annotations
 
 import contextlib
-import hashlib
-import json
 import logging
 import os
 import tempfile
-from collections.abc import Sequence
+from collections.abc import Callable
 from pathlib import Path
+from typing import Literal
 
-__all__ = ["ProgressStore", "default_state_dir", "world_key"]
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
+
+__all__ = ["FILE_NAME", "KEEP_WORLDS", "ProgressStore", "WorldProgress", "default_state_dir"]
 
 logger = logging.getLogger("skydeck.ai")
+
+FILE_NAME = "ai_progress.json"
+KEEP_WORLDS = 5
 
 
 def default_state_dir() -> Path:
@@ -30,31 +40,82 @@ def default_state_dir() -> Path:
     return Path(base) / "skydeck"
 
 
-def world_key(boxes: Sequence[tuple[float, float]]) -> str:
-    """A short stable name for the world these boxes belong to."""
-    rounded = ";".join(f"{round(x):d},{round(y):d}" for x, y in boxes)
-    return hashlib.sha256(rounded.encode()).hexdigest()[:16]
+class WorldProgress(BaseModel):
+    """One world's mission: its boxes, those visited (in order), and whether it is finished."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    world: str = Field(min_length=1)
+    boxes: int = Field(ge=0)
+    visited: list[int] = Field(default_factory=list)
+    done: bool = False
+
+
+class _ProgressFile(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+    version: Literal[2]
+    worlds: list[WorldProgress] = Field(default_factory=list)
 
 
 class ProgressStore:
-    """Visited box indices per world key, in a JSON file under ``directory``."""
+    """The progress of the last few worlds, in ``directory/ai_progress.json``; problems with
+    the file go to ``warn`` (the AI passes its node logger's, so they reach ``/rosout``)."""
 
-    def __init__(self, directory: Path) -> None:
-        self.path = directory / "ai_progress.json"
+    def __init__(self, directory: Path, *, warn: Callable[[str], None] | None = None) -> None:
+        self.path = directory / FILE_NAME
+        self._warn = warn or logger.warning
+        self._worlds: list[WorldProgress] | None = None  # read on first use, then kept
+        self._reported: set[str] = set()
 
-    def load(self, key: str) -> list[int]:
-        """The boxes visited in world ``key``, in visiting order (empty if none or unreadable)."""
-        return list(self._read().get(key, []))
+    def load(self, world: str) -> WorldProgress | None:
+        """The saved progress of ``world``, or None if there is none."""
+        return next((p.model_copy(deep=True) for p in self._read() if p.world == world), None)
 
-    def save(self, key: str, visited: Sequence[int]) -> None:
-        """Record the visited boxes of world ``key`` (atomically)."""
-        data = self._read()
-        data[key] = list(visited)
+    def save(self, progress: WorldProgress) -> None:
+        """Record ``progress`` as the most recent world, forget all but the last KEEP_WORLDS,
+        and write the file atomically. A failed write is logged (once per cause), not raised."""
+        worlds = [p for p in self._read() if p.world != progress.world]
+        worlds.append(progress.model_copy(deep=True))
+        self._worlds = worlds[-KEEP_WORLDS:]
+        try:
+            self._write(_ProgressFile(version=2, worlds=self._worlds).model_dump_json())
+        except OSError as error:
+            self._warn_once(
+                f"cannot save the AI's progress to {self.path}: {error.strerror or error};"
+                " a restarted AI may fly this world again"
+            )
+
+    def _read(self) -> list[WorldProgress]:
+        if self._worlds is None:
+            self._worlds = self._load_file()
+        return self._worlds
+
+    def _load_file(self) -> list[WorldProgress]:
+        try:
+            text = self.path.read_text()
+        except FileNotFoundError:
+            return []
+        except (OSError, UnicodeDecodeError) as error:
+            self._warn_once(f"ignoring the AI's progress file {self.path}: cannot read it ({error})")
+            return []
+        try:
+            return _ProgressFile.model_validate_json(text).worlds
+        except ValidationError as error:
+            first = error.errors()[0]
+            where = ".".join(str(part) for part in first["loc"]) or "the file"
+            self._warn_once(
+                f"ignoring the AI's progress file {self.path}: not a progress file of this version"
+                f" ({where}: {first['msg']}); it is replaced at the next save"
+            )
+            return []
+
+    def _write(self, text: str) -> None:
         self.path.parent.mkdir(parents=True, exist_ok=True)
         fd, temporary = tempfile.mkstemp(dir=self.path.parent, prefix=".ai_progress.", suffix=".tmp")
         try:
             with os.fdopen(fd, "w") as handle:
-                json.dump(data, handle)
+                handle.write(text)
                 handle.flush()
                 os.fsync(handle.fileno())
             os.replace(temporary, self.path)
@@ -63,16 +124,7 @@ class ProgressStore:
                 os.unlink(temporary)
             raise
 
-    def _read(self) -> dict[str, list[int]]:
-        try:
-            data = json.loads(self.path.read_text())
-        except FileNotFoundError:
-            return {}
-        except (OSError, ValueError) as error:
-            logger.warning("ignoring unreadable progress file %s: %s", self.path, error)
-            return {}
-        if not isinstance(data, dict):
-            return {}
-        return {
-            str(k): [int(i) for i in v if isinstance(i, int)] for k, v in data.items() if isinstance(v, list)
-        }
+    def _warn_once(self, text: str) -> None:
+        if text not in self._reported:
+            self._reported.add(text)
+            self._warn(text)

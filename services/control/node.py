@@ -3,7 +3,12 @@
 
 Refusals are answers (``success: false``) that say why, as in the seed:
 take-off only from the ground, fly only once airborne, never to the current setpoint, never
-outside the arena.
+outside the arena. Each refusal's message begins with its :class:`Refusal` tag, which is what a
+program (the AI) reads; the text after it is for people.
+
+A new build of the simulator's world (``/simulator/world``: a reset, or a restarted simulator)
+puts the drone back on the ground at the start, so control drops to ``landed`` and stops its
+setpoint stream instead of sending the new drone after the old world's goal.
 """
 
 from __future__ import annotations
@@ -22,6 +27,9 @@ from shared_models.ros_workshop import (
     FlyCommand,
     FlyCommandRequest,
     FlyCommandResponse,
+    Refusal,
+    SimWorld,
+    refusal_message,
 )
 from shared_models.std_msgs import Header
 from shared_models.std_srvs import Trigger, TriggerRequest, TriggerResponse
@@ -39,6 +47,7 @@ AIRBORNE_Z_M = FLIGHT_ALTITUDE_M - 0.2
 STALE_POSE_S = 1.0
 STALE_MESSAGE = "no drone pose: holding the setpoint (simulator not publishing)"
 _SAME_TARGET_M = 1e-3
+_NO_POSE = refusal_message(Refusal.NO_POSE, "No drone pose: is the simulator (`skydeck run sim`) running?")
 
 
 class ControlNode(Node):
@@ -53,7 +62,9 @@ class ControlNode(Node):
         self.state: ControlPhase = "landed"
         self.setpoint_publisher = self.create_publisher(PositionTarget, "/drone/setpoint", 10)
         self.state_publisher = self.create_publisher(ControlState, "/control/state", 10, latched=True)
+        self.world_id: str | None = None
         self.create_subscription(PoseStamped, "/drone/pose", self.on_pose, 1)
+        self.create_subscription(SimWorld, "/simulator/world", self.on_world, 1)
         self.create_service(Trigger, "/control/take_off", self.handle_take_off)
         self.create_service(FlyCommand, "/control/fly", self.handle_fly)
         self.create_service(Trigger, "/control/land", self.handle_land)
@@ -88,6 +99,15 @@ class ControlNode(Node):
         )
         self._set_state("flying")
 
+    def on_world(self, msg: SimWorld) -> None:
+        known, self.world_id = self.world_id, msg.id
+        if known is None or known == msg.id or self.state == "landed":
+            return
+        # The drone stands at the start of a new world: whatever it was doing is over.
+        self.get_logger().info("new world %s: the drone is on the ground at the start", msg.id)
+        self.setpoint = Point()
+        self._set_state("landed")
+
     def pose_is_fresh(self) -> bool:
         """Whether the simulator's pose stream is alive."""
         return time.monotonic() - self._pose_wall_s <= STALE_POSE_S
@@ -97,9 +117,11 @@ class ControlNode(Node):
     def handle_take_off(self, request: TriggerRequest) -> TriggerResponse:
         self.get_logger().info("Handling take off!")
         if self.drone_position is None or not self.pose_is_fresh():
-            return TriggerResponse(success=False, message="No drone pose: is the simulator (`skydeck run sim`) running?")
+            return TriggerResponse(success=False, message=_NO_POSE)
         if self.drone_position.z > ON_GROUND_Z_M:
-            return TriggerResponse(success=False, message="Seems like the drone is already flying!")
+            return TriggerResponse(
+                success=False, message=refusal_message(Refusal.ALREADY_AIRBORNE, "Seems like the drone is already flying!")
+            )
         self.setpoint = Point(x=self.drone_position.x, y=self.drone_position.y, z=FLIGHT_ALTITUDE_M)
         self._set_state("taking_off")
         return TriggerResponse(success=True, message="All ok!")
@@ -107,16 +129,16 @@ class ControlNode(Node):
     def handle_fly(self, request: FlyCommandRequest) -> FlyCommandResponse:
         x, y = float(request.x), float(request.y)
         if self.state in ("landed", "landing"):
-            return FlyCommandResponse(success=False, message="Take off first: the drone is not in the air.")
+            return _fly_refusal(Refusal.NOT_AIRBORNE, "Take off first: the drone is not in the air.")
         if not (math.isfinite(x) and math.isfinite(y)):
-            return FlyCommandResponse(success=False, message=f"Target ({x}, {y}) is not a finite position.")
+            return _fly_refusal(Refusal.NOT_FINITE, f"Target ({x}, {y}) is not a finite position.")
         if abs(x) > FLY_HALF_SIZE_M or abs(y) > FLY_HALF_SIZE_M:
-            return FlyCommandResponse(
-                success=False,
-                message=f"Target ({x:g}, {y:g}) is outside the arena: x and y must be within ±{FLY_HALF_SIZE_M:g} m.",
+            return _fly_refusal(
+                Refusal.OUTSIDE_ARENA,
+                f"Target ({x:g}, {y:g}) is outside the arena: x and y must be within ±{FLY_HALF_SIZE_M:g} m.",
             )
         if abs(x - self.setpoint.x) < _SAME_TARGET_M and abs(y - self.setpoint.y) < _SAME_TARGET_M:
-            return FlyCommandResponse(success=False, message=f"Already flying to ({x:g}, {y:g}).")
+            return _fly_refusal(Refusal.SAME_TARGET, f"Already flying to ({x:g}, {y:g}).")
         self.setpoint = Point(x=x, y=y, z=FLIGHT_ALTITUDE_M)
         self.get_logger().info("Flying to (%g, %g)", x, y)
         self.publish_state()
@@ -124,7 +146,8 @@ class ControlNode(Node):
 
     def handle_land(self, request: TriggerRequest) -> TriggerResponse:
         if self.state in ("landed", "landing"):
-            return TriggerResponse(success=False, message=f"Already {self.state}.")
+            reason = Refusal.ALREADY_LANDED if self.state == "landed" else Refusal.ALREADY_LANDING
+            return TriggerResponse(success=False, message=refusal_message(reason, f"Already {self.state}."))
         position = self.drone_position or self.setpoint
         self.setpoint = Point(x=position.x, y=position.y, z=0.0)
         self._set_state("landing")
@@ -168,6 +191,10 @@ class ControlNode(Node):
                 message=STALE_MESSAGE if self._stale_reported else "",
             )
         )
+
+
+def _fly_refusal(reason: Refusal, text: str) -> FlyCommandResponse:
+    return FlyCommandResponse(success=False, message=refusal_message(reason, text))
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -11,10 +11,11 @@ The CLI does not go through the environment: its flags become keyword arguments
 
 from __future__ import annotations
 
+import argparse
 import socket
 from typing import Any, TypeVar
 
-from pydantic import Field
+from pydantic import Field, ValidationError
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 from services.runtime.wire import MAX_MESSAGE_BYTES
@@ -27,11 +28,13 @@ __all__ = [
     "process_settings",
     "reachable_host",
     "set_process_overrides",
+    "settings_from_flags",
 ]
 
 DEFAULT_CORE_URL = "http://127.0.0.1:8000"
 
 S = TypeVar("S", bound="ProcessSettings")
+B = TypeVar("B", bound=BaseSettings)
 
 # Flags of this process's command line (`skydeck run --port 8003 ...`), by field name.
 _overrides: dict[str, Any] = {}
@@ -85,3 +88,15 @@ def reachable_host(host: str) -> str:
     if host in ("0.0.0.0", "::", ""):
         return socket.gethostname()
     return host
+
+
+def settings_from_flags(parser: argparse.ArgumentParser, settings_type: type[B], argv: list[str] | None) -> B:
+    """A node's own settings: the flags given in ``argv`` over its ``SKYDECK_*`` variables; a
+    bad value exits with the parser's one-line error naming the flag."""
+    args = parser.parse_args(argv)
+    overrides = {key: value for key, value in vars(args).items() if value is not None}
+    try:
+        return settings_type(**overrides)
+    except ValidationError as error:
+        first = error.errors()[0]
+        parser.error(f"--{first['loc'][0]}: {first['msg']}")

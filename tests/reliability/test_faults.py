@@ -195,10 +195,12 @@ async def test_killed_sim_is_noticed_reported_and_the_mission_restarts_after_a_r
                 await _until(controls, lambda m: "no drone pose" in m["message"], 20, "control's status")
             await system.wait_for_line("[launch] sim ready", timeout_s=40, after=mark)
             await _wait_registered(system, {"/sim"}, timeout_s=10)
+            # The restarted simulator built a new world: the AI starts a new tour by itself, and
+            # a reset (a newer world still) starts another, without /ai/start.
+            await system.wait_for_line("the simulator built a new world", timeout_s=20, after=mark)
+            started = len(statuses)
             reset = await system.call("/simulator/reset")
             assert reset["success"], reset
-            started = len(statuses)
-            assert (await system.call("/ai/start"))["success"]
             # A fresh mission for the new world: it starts from no visited box and ends with all 8.
             status = await system.messages("/ai/status", lambda m: m["state"] in ("done", "error"), 120)
         finally:
@@ -206,6 +208,8 @@ async def test_killed_sim_is_noticed_reported_and_the_mission_restarts_after_a_r
                 reader.cancel()
         new_boxes = (await system.messages("/perception/boxes", lambda m: True, 10))["points"]
         assert [(round(p["x"]), round(p["y"])) for p in new_boxes] != [(round(p["x"]), round(p["y"])) for p in old_boxes]
+        world = (await system.messages("/simulator/world", lambda m: True, 10))["id"]
+        assert any(f"new world {world}: 8 boxes" in line for line in system.lines)
         # Statuses of the old mission, already on their way, may still arrive after the reset: the
         # new mission begins where the AI reports "idle" (waiting for the new world's boxes).
         after_start = statuses[started:]

@@ -21,7 +21,7 @@ from services.runtime.clock import Clock
 from services.runtime.timer import Timer
 from shared_models.builtin_interfaces import Time
 from shared_models.geometry_msgs import Point, Point32, Polygon, Pose, PoseStamped
-from shared_models.ros_workshop import ControlState, FlyCommand
+from shared_models.ros_workshop import ControlState, FlyCommand, SimWorld
 from shared_models.std_srvs import Trigger
 from tests.conftest import wait_until
 
@@ -85,26 +85,33 @@ def _boxes(*xy: tuple[float, float], z: float = 1.0) -> Polygon:
     return Polygon(points=[Point32(x=x, y=y, z=z) for x, y in xy])
 
 
-async def test_ai_plans_on_boxes_at_rest_and_on_the_new_world_after_start(tmp_path) -> None:
+async def test_ai_plans_on_boxes_at_rest_and_on_the_new_world_after_a_reset(tmp_path) -> None:
     ai = AiNode(NodeSettings(port=0), store=ProgressStore(tmp_path))
+    ai.on_world(SimWorld(id="old"))
     old = ((5.0, 5.0), (-6.0, 7.0))
     for _ in range(3):
-        ai.on_boxes(_boxes(*old))
-    assert ai._boxes_event.is_set() and ai.boxes == list(old)
-    # A reset drops new boxes; /ai/start comes before the new ones have even been received.
-    response = await ai.handle_start(Trigger.Request())
+        ai.tracker.on_boxes(_boxes(*old))
+    assert ai.tracker.ready.is_set() and ai.tracker.boxes == list(old)
+    await ai.handle_start(Trigger.Request())
+    first = ai._mission
     try:
-        assert response.success
-        ai.on_boxes(_boxes(*old))  # an old message still in flight
-        ai.on_boxes(_boxes((9.0, -9.0), (-3.0, -8.0), z=6.0))  # the new boxes, falling
-        ai.on_boxes(_boxes((9.0, -9.0), (-3.0, -8.0), z=4.0))
-        assert not ai._boxes_event.is_set() and ai.boxes == list(old)
+        # A reset builds a new world; its id comes before the new boxes have even been received.
+        ai.on_world(SimWorld(id="new", build=1))
+        assert ai._mission is not first and first is not None and first.cancelling()  # a new tour
+        for _ in range(3):
+            ai.tracker.on_boxes(_boxes(*old))  # old messages still in flight through perception
+        assert not ai.tracker.ready.is_set()
+        ai.tracker.on_boxes(_boxes((9.0, -9.0), (-3.0, -8.0), z=6.0))  # the new boxes, falling
+        ai.tracker.on_boxes(_boxes((9.0, -9.0), (-3.0, -8.0), z=4.0))
+        assert not ai.tracker.ready.is_set()
         new = ((9.1, -9.0), (-3.0, -8.2))
         for _ in range(3):
-            ai.on_boxes(_boxes(*new))  # at rest
-        assert ai._boxes_event.is_set() and ai.boxes == list(new)
+            ai.tracker.on_boxes(_boxes(*new))  # at rest
+        assert ai.tracker.ready.is_set() and ai.tracker.boxes == list(new)
         # The new mission took the new world (and now waits for a drone pose).
-        await wait_until(lambda: "waiting" in ai.status.message, what="the mission to wait for a pose")
+        await wait_until(lambda: "waiting for the drone pose" in ai.status.message, what="the mission to wait for a pose")
+        saved = ai.store.load("new")
+        assert saved is not None and saved.boxes == 2 and saved.visited == []
     finally:
         ai._mission.cancel()  # type: ignore[union-attr]
 

@@ -9,6 +9,7 @@ import os
 from collections.abc import Iterator
 from pathlib import Path
 
+import httpx
 import pytest
 
 from tests.conftest import free_port_block
@@ -88,3 +89,21 @@ def test_mission_stop_and_start_buttons(dashboard) -> None:  # type: ignore[no-u
     page.wait_for_function(answered("/ai/start"), timeout=10_000)
     assert page.get_attribute("#command-result", "data-kind") == "success"
     page.wait_for_function("['taking_off', 'flying', 'done'].includes(window.skydeck.aiStatus.state)", timeout=30_000)
+
+
+def test_the_reset_button_starts_a_new_tour_over_the_new_boxes(dashboard, system: System) -> None:  # type: ignore[no-untyped-def]
+    """The dashboard's reset builds a new world: the AI flies a new tour by itself (issue 21)."""
+    page, _ = dashboard
+    page.wait_for_function("window.skydeck.aiStatus && window.skydeck.aiStatus.visited.length >= 1", timeout=90_000)
+    before = httpx.get(system.url + "/simulator/world", timeout=5).json()["id"]
+    page.click("#reset")
+    page.wait_for_function(answered("/simulator/reset"), timeout=10_000)
+    assert page.get_attribute("#command-result", "data-kind") == "success"
+    after = httpx.get(system.url + "/simulator/world", timeout=5).json()["id"]
+    assert after != before and after in page.inner_text("#command-result")
+    # No /ai/start: the new world's tour begins from no box visited, and visits the new boxes.
+    page.wait_for_function(
+        "() => { const s = window.skydeck.aiStatus; return s.state === 'flying' && s.visited.length === 0; }",
+        timeout=30_000,
+    )
+    page.wait_for_function("window.skydeck.aiStatus.visited.length >= 1", timeout=60_000)

@@ -190,3 +190,64 @@ def test_heuristic_finds_the_straight_line_through_shuffled_points() -> None:
     assert not tour.optimal
     assert tour.length_m == pytest.approx(40.0)
     assert [points[i][0] for i in tour.order] == [float(x) for x in range(1, 41)]
+
+
+# --- finishing legs (landing beside the last box, or a closed tour home) ---------------------
+
+
+def _brute_force_with_finish(start, points, finish) -> float:
+    return min(
+        tour_length(start, points, order, finish=finish)
+        for order in itertools.permutations(range(len(points)))
+    )
+
+
+@pytest.mark.parametrize("n", range(1, 8))
+def test_exact_with_finishing_legs_matches_brute_force(n: int) -> None:
+    rng = random.Random(3000 + n)
+    for _ in range(10):
+        start, points = _random_instance(rng, n)
+        finish = [rng.uniform(0, 10) for _ in range(n)]
+        tour = plan_tour(start, points, finish=finish)
+        assert tour.optimal and _is_permutation(tour.order, n)
+        assert tour.length_m == pytest.approx(_brute_force_with_finish(start, points, finish), abs=1e-9)
+
+
+def test_a_closed_tour_is_shorter_than_the_open_one_plus_the_way_back() -> None:
+    """Flying the best open tour and then home (what the AI did) is often longer than the best
+    closed tour; planning with the finishing legs finds the latter."""
+    rng = random.Random(77)
+    gains = []
+    for _ in range(30):
+        start, points = _random_instance(rng, 6)
+        home = [math.dist(p, start) for p in points]
+        open_tour = plan_tour(start, points)
+        open_then_home = open_tour.length_m + home[open_tour.order[-1]]
+        closed = plan_tour(start, points, finish=home)
+        assert closed.length_m == pytest.approx(tour_length(start, points, closed.order, finish=home))
+        assert closed.length_m <= open_then_home + 1e-9
+        gains.append(open_then_home - closed.length_m)
+    assert sum(gain > 0.5 for gain in gains) >= 5
+
+
+@pytest.mark.parametrize("n", [9, 12])
+def test_heuristic_with_finishing_legs_is_close_to_optimal(n: int) -> None:
+    rng = random.Random(4000 + n)
+    ratios = []
+    for _ in range(10):
+        start, points = _random_instance(rng, n)
+        finish = [math.dist(p, start) for p in points]
+        heuristic = plan_tour(start, points, finish=finish, exact_limit=0)
+        exact = plan_tour(start, points, finish=finish, exact_limit=12)
+        assert _is_permutation(heuristic.order, n)
+        assert heuristic.length_m == pytest.approx(tour_length(start, points, heuristic.order, finish=finish))
+        assert heuristic.length_m >= exact.length_m - 1e-9
+        ratios.append(heuristic.length_m / exact.length_m)
+    assert max(ratios) < 1.05, f"worst heuristic/optimal ratio {max(ratios):.3f}"
+
+
+def test_bad_finishing_legs_are_refused() -> None:
+    with pytest.raises(ValueError, match="one per point"):
+        plan_tour((0.0, 0.0), [(1.0, 1.0)], finish=[1.0, 2.0])
+    with pytest.raises(ValueError, match="finite and >= 0"):
+        plan_tour((0.0, 0.0), [(1.0, 1.0)], finish=[math.nan])

@@ -9,7 +9,12 @@ from pathlib import Path
 
 import pytest
 
-from services.bench.mission import brute_force_length, nearest_first_length
+from services.bench.mission import (
+    GroundTrack,
+    brute_force_length,
+    nearest_first_length,
+    optimal_flight_m,
+)
 from services.bench.report import Result, format_table
 from services.bench.runner import Family, Progress, Trial, run_families
 from services.bench.sink import Sink, percentile
@@ -67,8 +72,8 @@ def test_whole_quick_run_has_every_row_of_the_issue(tmp_path: Path) -> None:
     names = {row["name"] for row in document["results"]}
     assert {
         "topic_throughput", "topic_latency_p50", "topic_latency_p99", "fanout_100", "service_rtt_p50",
-        "gateway_service_rtt_p50", "sim_rtf", "mission_tour_ratio", "startup", "zenoh_throughput",
-        "zenoh_latency_p50",
+        "gateway_service_rtt_p50", "sim_rtf", "mission_tour_ratio", "mission_flown_ratio", "mission_time",
+        "startup", "zenoh_throughput", "zenoh_latency_p50",
     } <= names  # fmt: skip
 
 
@@ -115,3 +120,37 @@ def test_brute_force_finds_the_tour_nearest_first_misses() -> None:
     points = [(5.0, 0.0), (-1.0, 0.0), (6.0, 0.0), (-7.0, 0.0)]
     assert brute_force_length((0.0, 0.0), points) == pytest.approx(19.0)  # 0 -> 5 -> 6 -> -1 -> -7
     assert nearest_first_length((0.0, 0.0), points) == pytest.approx(21.0)  # 0 -> -1 -> 5 -> 6 -> -7
+
+
+def test_the_optimum_for_each_landing_policy() -> None:
+    from services.ai.landing import CLEARANCE_M
+
+    points = [(5.0, 0.0), (-1.0, 0.0), (6.0, 0.0), (-7.0, 0.0)]
+    home = [abs(x) for x, _ in points]
+    assert brute_force_length((0.0, 0.0), points, home) == pytest.approx(26.0)  # closed: 2 * (6 + 7)
+    assert optimal_flight_m((0.0, 0.0), points, "home") == pytest.approx(26.0)
+    assert optimal_flight_m((0.0, 0.0), points, "beside_last_box") == pytest.approx(19.0 + CLEARANCE_M)
+
+
+def _pose(seq: int, t: float, x: float, y: float, z: float) -> dict:
+    stamp = {"sec": int(t), "nanosec": int(round((t - int(t)) * 1e9))}
+    return {"header": {"seq": seq, "stamp": stamp}, "pose": {"position": {"x": x, "y": y, "z": z}}}
+
+
+def test_ground_track_runs_from_take_off_to_touchdown() -> None:
+    track = GroundTrack([(3.0, 4.0)])
+    poses = [
+        (0.0, 0.0, 0.05),  # on the ground: not counted
+        (0.0, 0.0, 1.0),  # take-off at t = 1
+        (3.0, 4.0, 3.0),  # 5 m
+        (3.0, 8.0, 3.0),  # 4 m
+        (3.0, 8.0, 0.05),  # touchdown at t = 4
+        (9.0, 8.0, 0.05),  # dragged on the ground afterwards: not counted
+    ]
+    for seq, (x, y, z) in enumerate(poses):
+        track.add(_pose(seq + 1, float(seq), x, y, z))
+        assert track.landed == (seq >= 4)
+    assert track.track_m == pytest.approx(9.0) and track.flight_s == pytest.approx(3.0)
+    assert track.closest == [0.0] and track.missed == 0
+    track.add(_pose(10, 6.0, 9.0, 8.0, 0.05))
+    assert track.missed == 3
