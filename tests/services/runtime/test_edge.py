@@ -10,24 +10,16 @@ import pytest
 from websockets.asyncio.client import connect
 from websockets.exceptions import ConnectionClosed
 
-from services.runtime import Node
 from services.runtime.edge.frames import is_complete
 from services.runtime.edge.links import stream_url
 from services.runtime.wire import Close, wire_description
 from shared_models.geometry_msgs import Point, PointStamped, Twist
 from tests.conftest import wait_until
+from tests.services.runtime.test_streams import (
+    Teleop as Echo,  # publishes /echo, subscribes /drone/cmd_vel
+)
 
 pytestmark = pytest.mark.timeout(60)
-
-
-class Echo(Node):
-    """Publishes /echo; subscribes /drone/cmd_vel."""
-
-    def __init__(self, settings) -> None:
-        super().__init__("edge_probe", settings=settings)
-        self.received: list[Twist] = []
-        self.create_subscription(Twist, "/drone/cmd_vel", self.received.append, 100)
-        self.publisher = self.create_publisher(Twist, "/echo", 10)
 
 
 async def _next(websocket, timeout_s: float = 5.0) -> dict:
