@@ -56,7 +56,9 @@ class ProcessSettings(BaseSettings):
     max_message_bytes: int = Field(default=MAX_MESSAGE_BYTES, gt=0)
     # Keep-alive pings reap sockets whose peer vanished without closing.
     ping_interval_s: float = Field(default=5.0, gt=0)
-    ping_timeout_s: float = Field(default=10.0, gt=0)
+    # Long enough for a reader that stalled (and was told so with 4001) to wake and read its
+    # close frame: its pong waits behind the frames it has not read (docs/streams.md).
+    ping_timeout_s: float = Field(default=30.0, gt=0)
     # A reader whose socket takes nothing for this long while frames wait is closed with 4001
     # (see reader_stall_s).
     stall_timeout_s: float = Field(default=5.0, gt=0)
