@@ -107,8 +107,9 @@ def test_every_service_refuses_bad_bodies_and_keeps_serving(workshop: Workshop) 
 
 def _close_of(url: str, payload: str | bytes) -> tuple[int | None, str]:
     with connect(url, max_size=None, open_timeout=5) as websocket:
-        websocket.send(payload)
         try:
+            # An oversized frame may be refused (1009) while we still write it: the send fails.
+            websocket.send(payload)
             while True:  # a stream may deliver messages before it closes on our frame
                 websocket.recv(timeout=5)
         except ConnectionClosed as closed:
