@@ -42,6 +42,10 @@ if TYPE_CHECKING:
     )
     from services.runtime.logger import NodeLogger
     from services.runtime.node import Node
+    from services.runtime.parameters import (
+        Parameter,
+        ParameterException,
+    )
     from services.runtime.publisher import Publisher
     from services.runtime.service import Service
     from services.runtime.settings import NodeSettings
@@ -56,6 +60,8 @@ __all__ = [
     "NodeError",
     "NodeLogger",
     "NodeSettings",
+    "Parameter",
+    "ParameterException",
     "Publisher",
     "Service",
     "ServiceCallRejectedError",
@@ -79,6 +85,8 @@ _HOMES = {
     "NodeError": "services.runtime.errors",
     "NodeLogger": "services.runtime.logger",
     "NodeSettings": "services.runtime.settings",
+    "Parameter": "services.runtime.parameters",
+    "ParameterException": "services.runtime.parameters",
     "Publisher": "services.runtime.publisher",
     "Service": "services.runtime.service",
     "ServiceCallRejectedError": "services.runtime.errors",
