@@ -377,7 +377,7 @@ class NodeParameters:
         # else: typed by the descriptor, or (an empty list) by the first non-empty list set later
         origin = "its default"
         if not ignore_override and name in self.overrides:
-            origin = "its override (--ros-args -p, a params file)"
+            origin = "its override: --ros-args -p or a params file"
             default = self._parameter(name, self.overrides[name], origin)
         if wrong_type := _type_refusal(descriptor, _coerced(default, _Type(descriptor.type)), declaring=True):
             raise InvalidParameterTypeException(f"{self.node_name}: {wrong_type} ({origin})")
