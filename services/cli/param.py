@@ -90,7 +90,7 @@ def _list(args: argparse.Namespace) -> int:
 
 
 def _get(args: argparse.Namespace) -> int:
-    from services.runtime.parameters import Parameter, parameter_value_to_python
+    from services.runtime.parameter import Parameter, parameter_value_to_python
     from shared_models.rcl_interfaces import ParameterValue
 
     node = node_name(args.node)
@@ -124,7 +124,7 @@ def _set(args: argparse.Namespace) -> int:
 
 
 def _set_values(node: str, values: dict[str, Any]) -> list[dict[str, Any]]:
-    from services.runtime.parameters import Parameter
+    from services.runtime.parameter import Parameter
 
     try:
         messages = [Parameter(name, value=value).to_parameter_msg().model_dump(mode="json") for name, value in values.items()]
@@ -155,7 +155,7 @@ def _describe(args: argparse.Namespace) -> int:
 
 
 def _dump(args: argparse.Namespace) -> int:
-    from services.runtime.parameters import parameter_value_to_python
+    from services.runtime.parameter import parameter_value_to_python
     from shared_models.rcl_interfaces import ParameterValue
 
     node = node_name(args.node)
@@ -208,7 +208,7 @@ def _load(args: argparse.Namespace) -> int:
 
 def _unchanged_read_only(node: str, values: dict[str, Any]) -> list[str]:
     """Read-only parameters the file gives their current value (a dump loaded back)."""
-    from services.runtime.parameters import parameter_value_to_python
+    from services.runtime.parameter import parameter_value_to_python
     from shared_models.rcl_interfaces import ParameterValue
 
     names = list(values)
@@ -223,7 +223,7 @@ def _unchanged_read_only(node: str, values: dict[str, Any]) -> list[str]:
 
 
 def _type_label(type_number: int) -> str:
-    from services.runtime.parameters import Parameter
+    from services.runtime.parameter import Parameter
 
     try:
         return Parameter.Type(type_number).label

@@ -18,9 +18,10 @@ from services.runtime.clock import Clock
 from services.runtime.errors import NodeError
 from services.runtime.http_client import HttpClient
 from services.runtime.logger import NodeLogger
-from services.runtime.parameter_service import PARAMETER_EVENTS, parameter_services
-from services.runtime.parameters import NodeParameters, Parameter
 from services.runtime.node_parameters import ParametersMixin
+from services.runtime.parameter import Parameter
+from services.runtime.parameter_service import PARAMETER_EVENTS, parameter_services
+from services.runtime.parameters import NodeParameters
 from services.runtime.participant import Participant
 from services.runtime.publisher import Publisher
 from services.runtime.ros_args import parse_ros_args, process_ros_arguments

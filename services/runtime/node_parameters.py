@@ -21,7 +21,8 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from services.runtime.parameters import NodeParameters, Parameter, SetParametersCallback
+from services.runtime.parameter import Parameter
+from services.runtime.parameters import NodeParameters, SetParametersCallback
 from shared_models.rcl_interfaces import ParameterDescriptor, SetParametersResult
 
 __all__ = ["ParametersMixin"]

@@ -14,7 +14,8 @@ import logging
 from collections.abc import Callable
 from typing import Any
 
-from services.runtime.parameters import NodeParameters, Parameter, ParameterException
+from services.runtime.parameter import Parameter
+from services.runtime.parameters import NodeParameters, ParameterException
 from shared_models import Message, ServiceType
 from shared_models.rcl_interfaces import (
     DescribeParameters,
@@ -72,7 +73,7 @@ def parameter_services(
         "describe_parameters": handlers.describe,
         "get_parameter_types": handlers.get_types,
         "get_parameters": handlers.get,
-        "list_parameters": handlers.list,
+        "list_parameters": handlers.list_names,
         "set_parameters": handlers.set,
         "set_parameters_atomically": handlers.set_atomically,
     }
@@ -107,8 +108,8 @@ class _Handlers:
             ]
         )
 
-    def list(self, request: ListParametersRequest) -> ListParametersResponse:
-        return ListParametersResponse(result=self._parameters.list(request.prefixes, request.depth))
+    def list_names(self, request: ListParametersRequest) -> ListParametersResponse:
+        return ListParametersResponse(result=self._parameters.list_names(request.prefixes, request.depth))
 
     def set(self, request: SetParametersRequest) -> SetParametersResponse:
         return SetParametersResponse(results=[self._set([parameter]) for parameter in request.parameters])

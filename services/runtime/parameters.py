@@ -5,8 +5,8 @@ refuse a change with a reason.
     speed = node.declare_parameter("speed", 0.2, ParameterDescriptor(description="m/s")).value
     node.add_on_set_parameters_callback(check)  # check(list[Parameter]) -> SetParametersResult
 
-:class:`Parameter` is shaped like ``rclpy.parameter.Parameter``; :class:`NodeParameters` is what
-a node holds (the :class:`~services.runtime.node.Node` methods are rclpy's names for it).
+:class:`NodeParameters` is what a node holds (the :class:`~services.runtime.node.Node` methods
+are rclpy's names for it); one value is a :class:`~services.runtime.parameter.Parameter`.
 The exceptions keep rclpy's names::
 
     ParameterException (SkydeckError)
@@ -24,38 +24,33 @@ exception: it is a :class:`SetParametersResult` with ``successful=False`` and th
 
 from __future__ import annotations
 
-import math
 import re
 from collections.abc import Callable, Iterable, Sequence
-from enum import IntEnum
 from typing import Any
 
+from services.runtime.parameter import Parameter
+from services.runtime.parameter import ParameterValueType as _Type
 from shared_models.errors import SkydeckError
 from shared_models.rcl_interfaces import (
     ListParametersResult,
     ParameterDescriptor,
     ParameterEvent,
-    ParameterValue,
     SetParametersResult,
 )
-from shared_models.rcl_interfaces import Parameter as ParameterMsg
 
 __all__ = [
     "InvalidParameterException",
     "InvalidParameterTypeException",
     "InvalidParameterValueException",
     "NodeParameters",
-    "Parameter",
     "ParameterAlreadyDeclaredException",
     "ParameterException",
     "ParameterImmutableException",
     "ParameterNotDeclaredException",
     "ParameterUninitializedException",
     "SetParametersCallback",
-    "parameter_value_to_python",
 ]
 
-_INT64 = (-(2**63), 2**63 - 1)
 # Letters, digits and underscores in tokens separated by dots (ROS 2 also allows slashes:
 # `qos_overrides./scan.publisher.depth`).
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*([./][A-Za-z0-9_]+)*")
@@ -96,216 +91,6 @@ class InvalidParameterValueException(ParameterException):
 
 class InvalidParameterTypeException(InvalidParameterValueException):
     """The value given when declaring is not of the parameter's type."""
-
-
-# -- values -----------------------------------------------------------------------------------
-
-
-class _Type(IntEnum):
-    """The parameter types (``Parameter.Type``), numbered as ``rcl_interfaces/msg/ParameterType``."""
-
-    NOT_SET = 0
-    BOOL = 1
-    INTEGER = 2
-    DOUBLE = 3
-    STRING = 4
-    BYTE_ARRAY = 5
-    BOOL_ARRAY = 6
-    INTEGER_ARRAY = 7
-    DOUBLE_ARRAY = 8
-    STRING_ARRAY = 9
-
-    @classmethod
-    def from_parameter_value(cls, value: Any) -> _Type:
-        """The type of a Python value; TypeError for a value no parameter can hold.
-
-        An empty list is a BYTE_ARRAY, as in rclpy; a parameter declared with one takes the
-        type of the first non-empty list it is given (see :meth:`NodeParameters.declare`).
-        """
-        if value is None:
-            return cls.NOT_SET
-        scalar = _scalar_type(value)
-        if scalar is not None:
-            return scalar
-        if isinstance(value, bytes | bytearray):
-            return cls.BYTE_ARRAY
-        if isinstance(value, list | tuple):
-            kinds = {_scalar_type(item) if not isinstance(item, bytes) else cls.BYTE_ARRAY for item in value}
-            if not kinds or kinds == {cls.BYTE_ARRAY}:
-                return cls.BYTE_ARRAY
-            if len(kinds) == 1 and (kind := next(iter(kinds))) in _ARRAY_OF:
-                return _ARRAY_OF[kind]
-            if kinds == {cls.INTEGER, cls.DOUBLE}:  # [1, 2.5] is a list of numbers: doubles
-                return cls.DOUBLE_ARRAY
-        raise TypeError(
-            f"{value!r} is not a parameter value: a bool, int, float, str, bytes, "
-            "or a list of bools, ints, floats or strings (all of one type)"
-        )
-
-    def check(self, value: Any) -> bool:
-        """Whether ``value`` is of this type (an empty list fits every array type)."""
-        if self is _Type.NOT_SET:
-            return value is None
-        try:
-            found = _Type.from_parameter_value(value)
-        except TypeError:
-            return False
-        return found is self or (self.is_array and isinstance(value, list | tuple) and not value)
-
-    @property
-    def is_array(self) -> bool:
-        return self >= _Type.BYTE_ARRAY
-
-    @property
-    def label(self) -> str:
-        """How ``ros2 param`` names it: ``double``, ``string array``..."""
-        return _LABELS[self]
-
-
-
-
-def _scalar_type(value: Any) -> _Type | None:
-    if isinstance(value, bool):  # before int: a bool is an int in Python
-        return _Type.BOOL
-    if isinstance(value, int):
-        return _Type.INTEGER
-    if isinstance(value, float):
-        return _Type.DOUBLE
-    if isinstance(value, str):
-        return _Type.STRING
-    return None
-
-
-_ARRAY_OF = {
-    _Type.BOOL: _Type.BOOL_ARRAY,
-    _Type.INTEGER: _Type.INTEGER_ARRAY,
-    _Type.DOUBLE: _Type.DOUBLE_ARRAY,
-    _Type.STRING: _Type.STRING_ARRAY,
-}
-_LABELS = {
-    _Type.NOT_SET: "not set",
-    _Type.BOOL: "boolean",
-    _Type.INTEGER: "integer",
-    _Type.DOUBLE: "double",
-    _Type.STRING: "string",
-    _Type.BYTE_ARRAY: "byte array",
-    _Type.BOOL_ARRAY: "boolean array",
-    _Type.INTEGER_ARRAY: "integer array",
-    _Type.DOUBLE_ARRAY: "double array",
-    _Type.STRING_ARRAY: "string array",
-}
-# The field of rcl_interfaces/msg/ParameterValue that holds each type.
-_FIELD = {
-    _Type.BOOL: "bool_value",
-    _Type.INTEGER: "integer_value",
-    _Type.DOUBLE: "double_value",
-    _Type.STRING: "string_value",
-    _Type.BYTE_ARRAY: "byte_array_value",
-    _Type.BOOL_ARRAY: "bool_array_value",
-    _Type.INTEGER_ARRAY: "integer_array_value",
-    _Type.DOUBLE_ARRAY: "double_array_value",
-    _Type.STRING_ARRAY: "string_array_value",
-}
-
-
-class Parameter:
-    """A named, typed value, as ``rclpy.parameter.Parameter``::
-
-        Parameter("speed", Parameter.Type.DOUBLE, 0.5)
-        Parameter("speed", value=0.5)          # the type from the value
-
-    Values are kept as plain Python: bool, int, float, str, ``bytes`` for BYTE_ARRAY, lists for
-    the other arrays. A wrong value for the type is a ValueError; a value of no parameter type a
-    TypeError (both as rclpy).
-    """
-
-    Type = _Type
-
-    __slots__ = ("_name", "_type", "_value")
-
-    def __init__(self, name: str, type_: _Type | None = None, value: Any = None) -> None:
-        if type_ is None:
-            type_ = _Type.from_parameter_value(value)
-        type_ = _Type(type_)
-        if not type_.check(value):
-            raise ValueError(f"type {type_.name} and value {value!r} of parameter {name!r} do not agree")
-        self._name = name
-        self._type = type_
-        self._value = _normalised(type_, value)
-
-    @property
-    def name(self) -> str:
-        return self._name
-
-    @property
-    def type_(self) -> _Type:
-        return self._type
-
-    @property
-    def value(self) -> Any:
-        return self._value
-
-    def get_parameter_value(self) -> ParameterValue:
-        """This value as an ``rcl_interfaces/msg/ParameterValue``."""
-        if self._type is _Type.NOT_SET:
-            return ParameterValue()
-        value = self._value
-        if self._type is _Type.BYTE_ARRAY and isinstance(value, list):
-            value = b"".join(value)
-        return ParameterValue.model_validate({"type": int(self._type), _FIELD[self._type]: value})
-
-    def to_parameter_msg(self) -> ParameterMsg:
-        """This parameter as an ``rcl_interfaces/msg/Parameter``."""
-        return ParameterMsg(name=self._name, value=self.get_parameter_value())
-
-    @classmethod
-    def from_parameter_msg(cls, msg: ParameterMsg) -> Parameter:
-        """A parameter from an ``rcl_interfaces/msg/Parameter``; ValueError for an unknown type."""
-        return cls(msg.name, _type_of_msg(msg.value), parameter_value_to_python(msg.value))
-
-    def __eq__(self, other: object) -> bool:
-        if not isinstance(other, Parameter):
-            return NotImplemented
-        return (self._name, self._type, self._value) == (other._name, other._type, other._value)
-
-    def __hash__(self) -> int:
-        return hash((self._name, self._type))
-
-    def __repr__(self) -> str:
-        return f"Parameter({self._name!r}, Parameter.Type.{self._type.name}, {self._value!r})"
-
-
-def _normalised(type_: _Type, value: Any) -> Any:
-    """One Python form per type: ``bytes`` for byte arrays, lists for arrays, checked numbers."""
-    if isinstance(value, list | tuple) and not value:
-        return []  # an empty list stays one, whatever array type it is taken as
-    if type_ is _Type.BYTE_ARRAY:
-        return b"".join(value) if isinstance(value, list | tuple) else bytes(value)
-    if type_ is _Type.DOUBLE_ARRAY:
-        value = [float(item) for item in value]
-    elif type_.is_array:
-        value = list(value)
-    numbers = value if isinstance(value, list) else [value]
-    if type_ in (_Type.INTEGER, _Type.INTEGER_ARRAY) and any(not _INT64[0] <= n <= _INT64[1] for n in numbers):
-        raise ValueError(f"{value!r} is out of the 64-bit integer range")
-    if type_ in (_Type.DOUBLE, _Type.DOUBLE_ARRAY) and not all(math.isfinite(n) for n in numbers):
-        raise ValueError(f"{value!r} is not finite (JSON cannot carry NaN or infinity)")
-    return value
-
-
-def _type_of_msg(value: ParameterValue) -> _Type:
-    try:
-        return _Type(value.type)
-    except ValueError:
-        raise ValueError(f"{value.type} is not a ParameterType (0-9)") from None
-
-
-def parameter_value_to_python(value: ParameterValue) -> Any:
-    """The Python value an ``rcl_interfaces/msg/ParameterValue`` holds (None when NOT_SET)."""
-    type_ = _type_of_msg(value)
-    if type_ is _Type.NOT_SET:
-        return None
-    return getattr(value, _FIELD[type_])
 
 
 def _coerced(parameter: Parameter, declared: _Type) -> Parameter:
@@ -360,7 +145,7 @@ class NodeParameters:
         *,
         ignore_override: bool = False,
     ) -> Parameter:
-        """Declare ``name`` with its default ``value`` (or a ``Parameter.Type`` for a typed
+        """Declare ``name`` with its default ``value`` (or a ``_Type`` for a typed
         parameter with no value yet, or None for a dynamically typed one); its override, if
         any, wins over the default. Raises when the value (or override) is refused."""
         self._check_name(name)
@@ -429,7 +214,7 @@ class NodeParameters:
     def describe(self, name: str) -> ParameterDescriptor:
         return self._declared(name).model_copy(deep=True)
 
-    def list(self, prefixes: Sequence[str] = (), depth: int = 0) -> ListParametersResult:
+    def list_names(self, prefixes: Sequence[str] = (), depth: int = 0) -> ListParametersResult:
         """Names under ``prefixes`` (all when empty), at most ``depth`` dots down (0: any), and the
         prefixes (namespaces) those names are in, as ``list_parameters`` answers."""
         names: list[str] = []
@@ -526,7 +311,9 @@ class NodeParameters:
         return SetParametersResult(successful=True)
 
     def _apply(self, parameters: list[Parameter], *, declaring: bool) -> None:
-        new, changed, deleted = [], [], []
+        new: list[Parameter] = []
+        changed: list[Parameter] = []
+        deleted: list[Parameter] = []
         for parameter in parameters:
             name = parameter.name
             if parameter.type_ is _Type.NOT_SET and not declaring:
@@ -547,7 +334,7 @@ class NodeParameters:
         self._publish(new=new, changed=changed, deleted=deleted)
 
     def _publish(
-        self, *, new: list[Parameter] = (), changed: list[Parameter] = (), deleted: list[Parameter] = ()  # type: ignore[assignment]
+        self, *, new: Sequence[Parameter] = (), changed: Sequence[Parameter] = (), deleted: Sequence[Parameter] = ()
     ) -> None:
         self._on_event(
             ParameterEvent(

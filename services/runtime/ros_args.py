@@ -26,7 +26,7 @@ from typing import Any
 
 import yaml
 
-from services.runtime.parameters import Parameter
+from services.runtime.parameter import Parameter
 from shared_models.errors import SkydeckError
 
 __all__ = [
