@@ -33,10 +33,14 @@ async def aggregate_openapi(core_schema: dict[str, Any], registry: Registry, htt
             continue
         description = record.description
         names = {e.name for e in description.services} | {e.name for e in description.publications}
-        for path, item in node_schema.get("paths", {}).items():
+        # A node's six parameter services get a section of their own, after its own services
+        # (Swagger UI orders sections as their first path comes).
+        node_paths = sorted(
+            node_schema.get("paths", {}).items(), key=lambda entry: is_parameter_service(description.name, entry[0])
+        )
+        for path, item in node_paths:
             if path not in names:
                 continue
-            # A node's six parameter services get a section of their own, after its own services.
             tag = f"node {description.name}" + (" parameters" if is_parameter_service(description.name, path) else "")
             for method, operation in item.items():
                 operation["tags"] = [tag]
