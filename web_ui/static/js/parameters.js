@@ -56,7 +56,11 @@ function typeOf(value) {
 
 function display(value, type) {
   if (value === undefined) return "";
-  return type === STRING ? value : JSON.stringify(value);
+  if (type === STRING) return value;
+  const double = (x) => (Number.isInteger(x) ? x.toFixed(1) : String(x)); // 1.0 stays a double
+  if (type === 3) return double(value);
+  if (type === 8) return `[${value.map(double).join(", ")}]`;
+  return JSON.stringify(value);
 }
 
 export class ParametersPanel {
