@@ -19,7 +19,9 @@ from shared_models.rcl_interfaces import ParameterValue
 
 __all__ = ["Parameter", "ParameterValueType", "parameter_value_to_python"]
 
-_INT64 = (-(2**63), 2**63 - 1)
+# The integers JSON carries exactly (JavaScript's safe integers): rcl_interfaces' integer fields
+# are bounded so in Skydeck, for every client to read them alike.
+_INT_RANGE = (-(2**53 - 1), 2**53 - 1)
 
 
 class ParameterValueType(IntEnum):
@@ -207,8 +209,8 @@ def _normalised(type_: ParameterValueType, value: Any) -> Any:
     elif type_.is_array:
         value = list(value)
     numbers = value if isinstance(value, list) else [value]
-    if type_ in (ParameterValueType.INTEGER, ParameterValueType.INTEGER_ARRAY) and any(not _INT64[0] <= n <= _INT64[1] for n in numbers):
-        raise ValueError(f"{value!r} is out of the 64-bit integer range")
+    if type_ in (ParameterValueType.INTEGER, ParameterValueType.INTEGER_ARRAY) and any(not _INT_RANGE[0] <= n <= _INT_RANGE[1] for n in numbers):
+        raise ValueError(f"{value!r} is out of the integer range JSON carries exactly (+-2**53 - 1)")
     if type_ in (ParameterValueType.DOUBLE, ParameterValueType.DOUBLE_ARRAY) and not all(math.isfinite(n) for n in numbers):
         raise ValueError(f"{value!r} is not finite (JSON cannot carry NaN or infinity)")
     return value

@@ -145,7 +145,7 @@ class NodeParameters:
         *,
         ignore_override: bool = False,
     ) -> Parameter:
-        """Declare ``name`` with its default ``value`` (or a ``_Type`` for a typed
+        """Declare ``name`` with its default ``value`` (or a ``Parameter.Type`` for a typed
         parameter with no value yet, or None for a dynamically typed one); its override, if
         any, wins over the default. Raises when the value (or override) is refused."""
         self._check_name(name)
@@ -168,7 +168,11 @@ class NodeParameters:
             raise InvalidParameterTypeException(f"{self.node_name}: {wrong_type} ({origin})")
         self._descriptors[name] = descriptor
         self._values[name] = Parameter(name)
-        result = self._set_atomically([default], declaring=True)
+        try:
+            result = self._set_atomically([default], declaring=True)
+        except BaseException:  # an on-set callback raised: nothing stays half-declared
+            del self._descriptors[name], self._values[name]
+            raise
         if not result.successful:
             del self._descriptors[name], self._values[name]
             raise InvalidParameterValueException(f"{self.node_name}: {result.reason} ({origin})")

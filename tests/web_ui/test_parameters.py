@@ -32,7 +32,7 @@ def _pick(page, node: str) -> None:  # type: ignore[no-untyped-def]
     page.click("[data-tab=parameters]")
     page.wait_for_function(f"[...document.querySelectorAll('#param-node option')].some(o => o.value === '{node}')", timeout=10_000)
     page.select_option("#param-node", node)
-    page.locator(f'#param-list tr[data-param="use_sim_time"]').wait_for(timeout=10_000)
+    page.locator('#param-list tr[data-param="use_sim_time"]').wait_for(timeout=10_000)
 
 
 def test_a_nodes_parameters_are_listed_with_types_and_values(dashboard) -> None:  # type: ignore[no-untyped-def]

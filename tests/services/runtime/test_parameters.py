@@ -66,8 +66,8 @@ def test_rclpy_constructors_and_their_errors() -> None:
             Parameter("x", value=bad)
     with pytest.raises(ValueError, match="not finite"):
         Parameter("x", value=float("nan"))
-    with pytest.raises(ValueError, match="64-bit"):
-        Parameter("x", value=2**63)
+    with pytest.raises(ValueError, match="JSON carries exactly"):
+        Parameter("x", value=2**53)
 
 
 # -- declaring --------------------------------------------------------------------------------
@@ -193,6 +193,9 @@ def test_a_callback_returning_something_else_is_a_type_error_and_its_exception_p
     params.add_on_set_callback(lambda parameters: True)  # type: ignore[arg-type, return-value]
     with pytest.raises(TypeError, match="expected SetParametersResult"):
         params.set([Parameter("a", value=2)])
+    with pytest.raises(TypeError):
+        params.declare("b", 1)
+    assert not params.has("b") and params.get("a").value == 1  # nothing half-declared or half-set
 
 
 def test_undeclared_names_are_refused_unless_the_node_allows_them() -> None:
