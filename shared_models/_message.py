@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import base64
 import binascii
+import re
 from dataclasses import dataclass
 from typing import Annotated, Any, ClassVar
 
@@ -86,17 +87,36 @@ Float64 = Annotated[float, Strict(), RosPrimitive("float64")]
 String = Annotated[str, Strict(), RosPrimitive("string")]
 
 
+def _base64_pattern() -> str:
+    """Exactly the text pydantic's base64 reading takes: one alphabet (standard or URL-safe),
+    padding optional, no stray bits in the last character; so the schema says what is accepted."""
+
+    def one(alphabet: str) -> str:
+        return rf"(?:{alphabet}{{4}})*(?:{alphabet}[AQgw](?:==?)?|{alphabet}{{2}}[AEIMQUYcgkosw048]=?)?"
+
+    return rf"^(?:{one('[A-Za-z0-9+/]')}|{one('[A-Za-z0-9_-]')})$"
+
+
+_BASE64 = re.compile(_base64_pattern())
+
+
 def _bytes_from(value: Any, info: ValidationInfo) -> Any:
     # A list of ints is how ROS (and rosbridge's input) spells uint8[]. In Python mode a str is
     # the base64 text of a JSON frame that went through json.loads (e.g. `skydeck topic pub`);
     # in JSON mode pydantic's val_json_bytes="base64" decodes it.
     if isinstance(value, list):
-        if not all(isinstance(item, int) and 0 <= item <= 0xFF for item in value):
+        # 5.0 is an integer to JSON Schema (and to a JavaScript client); true is not
+        items = [int(i) if type(i) is float and i.is_integer() else i for i in value]
+        if not all(type(item) is int and 0 <= item <= 0xFF for item in items):
             raise ValueError("a uint8[] list must hold integers from 0 to 255")
-        return bytes(value)
+        return bytes(items)
     if isinstance(value, str) and info.mode == "python":
+        # The same text as JSON mode takes (so the schema's pattern is the truth in both modes)
+        if not _BASE64.fullmatch(value):
+            raise ValueError("uint8[] given as a string must be base64 (one alphabet, at most its padding)")
         try:
-            return base64.b64decode(value.replace("-", "+").replace("_", "/"), validate=True)
+            text = value.rstrip("=").replace("-", "+").replace("_", "/")
+            return base64.b64decode(text + "=" * (-len(text) % 4), validate=True)
         except binascii.Error as error:
             raise ValueError(f"uint8[] given as a string must be base64 ({error})") from None
     return value
@@ -115,7 +135,13 @@ _Base64Bytes = Annotated[
     BeforeValidator(_bytes_from),
     PlainSerializer(_bytes_to_base64, return_type=str, when_used="json"),
     WithJsonSchema(
-        {"type": "string", "contentEncoding": "base64", "description": "bytes as base64"}
+        {
+            "anyOf": [
+                {"type": "string", "contentEncoding": "base64", "pattern": _BASE64.pattern},
+                {"type": "array", "items": {"type": "integer", "minimum": 0, "maximum": 255}},
+            ],
+            "description": "bytes as base64 (written with the standard alphabet), or a list of integers 0-255",
+        }
     ),
 ]
 UInt8Array = Annotated[_Base64Bytes, RosPrimitive("uint8[]")]

@@ -8,6 +8,9 @@ launcher and the CLI all descend from one class. The whole tree::
     ├── UnknownInterfaceError (LookupError)404  1008   a type name no message or service has
     ├── FrameRejected                       -   its own  a client's frame or option cannot be taken
     ├── NodeError                          500  1011   a node used in a way it cannot honour
+    ├── ParameterException                 400   -     a parameter used in a way the node cannot honour
+    │   └── (rclpy's names: ParameterNotDeclaredException, InvalidParameterValueException, ...)
+    ├── RosArgumentsError                  400   -     a --ros-args argument or params file is wrong
     ├── ServiceError                       502   -     a service call got no answer
     │   ├── ServiceUnavailableError        503   -     nobody hosts it / its node is unreachable
     │   ├── ServiceTimeoutError            504   -     its node did not answer in time

@@ -5,15 +5,16 @@ from __future__ import annotations
 
 from typing import Annotated, ClassVar
 
-from pydantic import ConfigDict, Field
+from annotated_types import Interval
+from pydantic import BeforeValidator, ConfigDict, Field, Strict
 
 from shared_models._message import (
     Bool,
     ByteArray,
     Declared,
     Float64,
-    Int64,
     Message,
+    RosPrimitive,
     ServiceType,
     String,
     UInt8,
@@ -55,6 +56,21 @@ __all__ = [
 ]
 
 _BYTES_AS_BASE64 = ConfigDict(ser_json_bytes="base64", val_json_bytes="base64")
+
+
+def _integral(value: object) -> object:
+    return int(value) if type(value) is float and value.is_integer() else value
+
+
+# Parameters travel to and from every kind of client (the CLI, browsers, rosbridge and Foxglove
+# clients in JavaScript), so their integers are the ones JSON carries exactly (|n| <= 2**53 - 1,
+# JavaScript's safe integers; bounds past that are compared as floats by JSON Schema validators),
+# and a number written 5.0 is the integer 5, as JSON Schema counts it. Not for hot messages: the
+# conversion costs a Python call per field.
+_JSON_SAFE = 2**53 - 1
+_ParamInt64 = Annotated[int, Strict(), RosPrimitive("int64"), Interval(ge=-_JSON_SAFE, le=_JSON_SAFE), BeforeValidator(_integral)]
+_ParamUInt64 = Annotated[int, Strict(), RosPrimitive("uint64"), Interval(ge=0, le=_JSON_SAFE), BeforeValidator(_integral)]
+_ParamUInt8 = Annotated[UInt8, BeforeValidator(_integral)]
 
 
 class Log(Message):
@@ -131,14 +147,14 @@ class ParameterValue(Message):
         "# Values are enumerated in `ParameterType.msg`."
     )
 
-    type: UInt8 = 0
+    type: _ParamUInt8 = 0
     bool_value: Bool = False
-    integer_value: Int64 = 0
+    integer_value: _ParamInt64 = 0
     double_value: Float64 = 0.0
     string_value: String = ""
     byte_array_value: ByteArray = b""
     bool_array_value: list[Bool] = Field(default_factory=list)
-    integer_array_value: list[Int64] = Field(default_factory=list)
+    integer_array_value: list[_ParamInt64] = Field(default_factory=list)
     double_array_value: list[Float64] = Field(default_factory=list)
     string_array_value: list[String] = Field(default_factory=list)
 
@@ -172,9 +188,9 @@ class IntegerRange(Message):
     __ros_type__ = "rcl_interfaces/msg/IntegerRange"
     __ros_comment__ = "# Represents bounds and a step value for an integer typed parameter."
 
-    from_value: Int64 = 0  # Start value for valid values, inclusive.
-    to_value: Int64 = 0  # End value for valid values, inclusive.
-    step: UInt64 = 0  # Size of valid steps between the from and to bound; 0 means continuous.
+    from_value: _ParamInt64 = 0  # Start value for valid values, inclusive.
+    to_value: _ParamInt64 = 0  # End value for valid values, inclusive.
+    step: _ParamUInt64 = 0  # Size of valid steps between the from and to bound; 0 means continuous.
 
 
 class ParameterDescriptor(Message):
@@ -189,7 +205,7 @@ class ParameterDescriptor(Message):
     __ros_comment__ = "# This is the message to communicate a parameter's descriptor."
 
     name: String = ""  # The name of the parameter.
-    type: UInt8 = 0  # Enum values are defined in the `ParameterType.msg` message.
+    type: _ParamUInt8 = 0  # Enum values are defined in the `ParameterType.msg` message.
     description: String = ""  # Description of the parameter, visible from introspection tools.
     additional_constraints: String = ""  # Plain English description of additional constraints.
     read_only: Annotated[Bool, Declared()] = False  # If true, the value cannot change.
@@ -323,7 +339,7 @@ class ListParametersRequest(Message):
     DEPTH_RECURSIVE: ClassVar[UInt64] = 0  # Recursively get parameters with all depths.
 
     prefixes: list[String] = Field(default_factory=list)  # The list of parameter prefixes to query.
-    depth: UInt64 = 0  # Relative depth from given prefixes to return.
+    depth: _ParamUInt64 = 0  # Relative depth from given prefixes to return.
 
 
 class ListParametersResponse(Message):

@@ -18,14 +18,16 @@ import math
 import secrets
 import time
 
-from pydantic import Field, field_validator
+from pydantic import Field, ValidationError, field_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 from services.runtime import Node, NodeSettings, spin
+from services.runtime.parameters import InvalidParameterValueException
 from services.runtime.settings import process_settings, settings_from_flags
 from shared_models.builtin_interfaces import Time
 from shared_models.geometry_msgs import Point, Pose, PoseArray, PoseStamped, Quaternion, Twist
 from shared_models.mavros_msgs import PositionTarget, State
+from shared_models.rcl_interfaces import IntegerRange, ParameterDescriptor
 from shared_models.ros_workshop import SimWorld
 from shared_models.sensor_msgs import CompressedImage
 from shared_models.std_msgs import Header
@@ -33,7 +35,7 @@ from shared_models.std_srvs import Trigger, TriggerRequest, TriggerResponse
 from sim_server.camera import render_jpeg
 from sim_server.commands import InvalidCommand
 from sim_server.limits import DEFAULT_BOXES, MAX_BOXES, PHYSICS_HZ
-from sim_server.world import World, WorldConfig
+from sim_server.world import World, WorldConfig, draw_seed
 
 __all__ = ["SimSettings", "SimulatorNode", "main"]
 
@@ -80,7 +82,7 @@ class SimulatorNode(Node):
         self, sim: SimSettings | None = None, settings: NodeSettings | None = None
     ) -> None:
         super().__init__("sim", settings=settings or process_settings(NodeSettings, port=DEFAULT_PORT))
-        self.sim = sim or SimSettings()
+        self.sim = self._declare_world_parameters(sim or SimSettings())
         self.world = World(WorldConfig(seed=self.sim.seed, boxes=self.sim.boxes))
         self.pose_publisher = self.create_publisher(PoseStamped, "/drone/pose", 10)
         self.state_publisher = self.create_publisher(State, "/drone/state", 10)
@@ -102,6 +104,37 @@ class SimulatorNode(Node):
             "world %s: seed %d, %d boxes, speed %s",
             self.world_info.id, self.world.seed, self.sim.boxes, speed,
         )
+
+    def _declare_world_parameters(self, sim: SimSettings) -> SimSettings:
+        """The world's options as read-only parameters (``skydeck param get /sim seed``); an
+        override (``--ros-args -p seed:=5``) wins over the flag, as for any parameter."""
+        seed = self.declare_parameter(
+            "seed",
+            draw_seed() if sim.seed is None else sim.seed,
+            ParameterDescriptor(
+                read_only=True,
+                description="the world's random seed (drawn when not given): the same seed, the same world",
+                integer_range=[IntegerRange(from_value=0, to_value=2**32 - 1)],
+            ),
+        ).value
+        boxes = self.declare_parameter(
+            "boxes",
+            sim.boxes,
+            ParameterDescriptor(
+                read_only=True, description="number of boxes", integer_range=[IntegerRange(from_value=0, to_value=MAX_BOXES)]
+            ),
+        ).value
+        speed = self.declare_parameter(
+            "speed",
+            "max" if sim.speed is None else sim.speed,
+            ParameterDescriptor(read_only=True, dynamic_typing=True, description="times real time, or 'max'"),
+        ).value
+        try:
+            return SimSettings(seed=seed, boxes=boxes, speed=speed)
+        except ValidationError as error:
+            raise InvalidParameterValueException(
+                f"{self.get_name()}: parameter 'speed': {error.errors()[0]['msg']}"
+            ) from None
 
     # -- inputs -------------------------------------------------------------------------------
 

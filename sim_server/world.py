@@ -79,13 +79,18 @@ class DroneState:
     """Altitude at or below ON_GROUND_Z_M."""
 
 
+def draw_seed() -> int:
+    """A random 32-bit world seed (a world built without one draws one)."""
+    return random.SystemRandom().getrandbits(32)
+
+
 class World:
     """A headless PyBullet world with one quadrotor and ``config.boxes`` boxes."""
 
     def __init__(self, config: WorldConfig | None = None) -> None:
         self.config = config or WorldConfig()
         seed = self.config.seed
-        self.seed: int = random.SystemRandom().getrandbits(32) if seed is None else seed
+        self.seed: int = draw_seed() if seed is None else seed
         self._rng = random.Random(self.seed)
         self._steps = 0
         self._closed = False

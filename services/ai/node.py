@@ -38,11 +38,20 @@ from services.ai.landing import (
 from services.ai.planner import plan_tour
 from services.ai.progress import ProgressStore, WorldProgress, default_state_dir
 from services.ai.world import WorldTracker
-from services.runtime import Client, Node, NodeSettings, ServiceError, ServiceUnavailableError, spin
+from services.runtime import (
+    Client,
+    Node,
+    NodeSettings,
+    Parameter,
+    ServiceError,
+    ServiceUnavailableError,
+    spin,
+)
 from services.runtime.settings import process_settings, settings_from_flags
 from shared_models import Message
 from shared_models.errors import SkydeckError
 from shared_models.geometry_msgs import Point, Polygon, PoseStamped
+from shared_models.rcl_interfaces import ParameterDescriptor, SetParametersResult
 from shared_models.ros_workshop import (
     AiStatus,
     ControlState,
@@ -107,6 +116,17 @@ class AiNode(Node):
     ) -> None:
         super().__init__("ai", settings=settings or process_settings(NodeSettings, port=DEFAULT_PORT))
         self.ai = ai or AiSettings()
+        # The landing policy is a parameter too (`-p landing:=home`, `skydeck param set /ai landing
+        # home`), its default the flag's; a new value applies from the next tour planned.
+        self.add_on_set_parameters_callback(_check_landing)
+        self.declare_parameter(
+            "landing",
+            self.ai.landing,
+            ParameterDescriptor(
+                description="where to land once every box is visited (read when a tour is planned)",
+                additional_constraints=f"one of: {', '.join(LANDING_POLICIES)}",
+            ),
+        )
         self.store = store or ProgressStore(default_state_dir(), warn=self.get_logger().warning)
         self.drone_position: Point | None = None
         self.tracker = WorldTracker()
@@ -193,10 +213,11 @@ class AiNode(Node):
         position = await self._fresh_position()
         remaining = [i for i in range(len(boxes)) if i not in visited]
         came_from: Point2 = (position.x, position.y)
+        landing: LandingPolicy = self.get_parameter("landing").value
         if remaining:
             await self._take_off()
             position = await self._fresh_position()
-            legs = finishing_legs(self.ai.landing, boxes, home=HOME_XY_M)
+            legs = finishing_legs(landing, boxes, home=HOME_XY_M)
             tour = plan_tour(
                 (position.x, position.y), [boxes[i] for i in remaining], finish=[legs[i] for i in remaining]
             )
@@ -204,7 +225,7 @@ class AiNode(Node):
             self._update(state="flying", tour=order, tour_length=tour.length_m, remaining=len(order))
             self.get_logger().info(
                 "tour of %d boxes, landing %s: %.1f m (%s)",
-                len(order), self.ai.landing.replace("_", " "), tour.length_m, "optimal" if tour.optimal else "2-opt",
+                len(order), landing.replace("_", " "), tour.length_m, "optimal" if tour.optimal else "2-opt",
             )
             came_from = (position.x, position.y)
             for index in order:
@@ -217,7 +238,7 @@ class AiNode(Node):
                 self._update(visited=list(visited), tour=left, remaining=len(left))
                 if left:
                     came_from = target
-        await self._land(boxes, visited, came_from)
+        await self._land(boxes, visited, came_from, landing)
         progress.done = True
         self.store.save(progress)
         self._update(state="done", target=-1, message=f"visited {len(visited)} boxes")
@@ -261,11 +282,11 @@ class AiNode(Node):
             sent_s = time.monotonic()
             self._check(response.success, response.message, "take-off")
 
-    async def _land(self, boxes: list[Point2], visited: list[int], came_from: Point2) -> None:
+    async def _land(self, boxes: list[Point2], visited: list[int], came_from: Point2, landing: LandingPolicy) -> None:
         """Fly to where the policy lands, land there, and wait for the touchdown."""
         if (await self._fresh_position()).z > ON_GROUND_Z_M:
             spot = HOME_XY_M
-            if self.ai.landing == "beside_last_box" and visited:
+            if landing == "beside_last_box" and visited:
                 spot = landing_spot(boxes[visited[-1]], boxes, arriving_from=came_from) or HOME_XY_M
             where = "at the start" if spot == HOME_XY_M else "beside the last box"
             self._update(
@@ -384,6 +405,15 @@ class AiNode(Node):
     def publish_status(self) -> None:
         self.status.header = Header(stamp=self.get_clock().now().to_msg(), frame_id="map")
         self.status_publisher.publish(self.status.model_copy())
+
+
+def _check_landing(parameters: list[Parameter]) -> SetParametersResult:
+    for parameter in parameters:
+        if parameter.name == "landing" and parameter.value not in LANDING_POLICIES:
+            return SetParametersResult(
+                successful=False, reason=f"landing must be one of {', '.join(LANDING_POLICIES)}; got {parameter.value!r}"
+            )
+    return SetParametersResult(successful=True)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -22,7 +22,10 @@ def add_parsers(subparsers: argparse._SubParsersAction[argparse.ArgumentParser])
     run = subparsers.add_parser(
         "run",
         help="run one node: a built-in (sim, perception, control, ai) or a .py file (like rosrun)",
-        description="Flags after NODE that `run` does not know are passed to the node (e.g. sim's --seed).",
+        description=(
+            "Flags after NODE that `run` does not know are passed to the node (e.g. sim's --seed). "
+            "`--ros-args -p NAME:=VALUE --params-file FILE.yaml` set the node's parameters, as in ROS 2."
+        ),
     )
     run.add_argument("node", help="sim | perception | control | ai | path/to/node.py")
     _add_server_flags(run, default_port=None)
@@ -72,8 +75,11 @@ def _core(args: argparse.Namespace) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
+    from services.runtime.ros_args import parse_ros_args, set_process_ros_arguments, split_ros_args
+
     _apply_flags(args)
-    node_argv = list(args.extra)
+    node_argv, ros_argv = split_ros_args(list(args.extra))
+    set_process_ros_arguments(parse_ros_args(ros_argv))  # every node of this process reads them
     if args.node in BUILTIN_NODES:
         module = importlib.import_module(BUILTIN_NODES[args.node])
         return int(module.main(node_argv) or 0)
@@ -84,7 +90,7 @@ def _run(args: argparse.Namespace) -> int:
         )
     if not path.is_file():
         raise CliError(f"no such node file: {path}")
-    sys.argv = [str(path), *node_argv]
+    sys.argv = [str(path), *args.extra]  # with --ros-args, as ROS hands them to the program
     sys.path.insert(0, str(path.resolve().parent))
     runpy.run_path(str(path), run_name="__main__")
     return 0

@@ -10,6 +10,7 @@ from typing import Any
 from services.core.core_node import CORE_NODE
 from services.core.registry import NodeRecord, Registry
 from services.runtime.http_client import HttpClient, HttpError
+from services.runtime.parameter_service import is_parameter_service
 
 __all__ = ["aggregate_openapi"]
 
@@ -32,11 +33,17 @@ async def aggregate_openapi(core_schema: dict[str, Any], registry: Registry, htt
             continue
         description = record.description
         names = {e.name for e in description.services} | {e.name for e in description.publications}
-        for path, item in node_schema.get("paths", {}).items():
+        # A node's six parameter services get a section of their own, after its own services
+        # (Swagger UI orders sections as their first path comes).
+        node_paths = sorted(
+            node_schema.get("paths", {}).items(), key=lambda entry: is_parameter_service(description.name, entry[0])
+        )
+        for path, item in node_paths:
             if path not in names:
                 continue
+            tag = f"node {description.name}" + (" parameters" if is_parameter_service(description.name, path) else "")
             for method, operation in item.items():
-                operation["tags"] = [f"node {description.name}"]
+                operation["tags"] = [tag]
                 if method == "post":  # what the gateway itself may answer for a service call
                     operation.setdefault("responses", {}).update(_GATEWAY_RESPONSES)
                 operation["operationId"] = f"{operation.get('operationId', path)}__{description.name.strip('/')}"

@@ -42,6 +42,8 @@ if TYPE_CHECKING:
     )
     from services.runtime.logger import NodeLogger
     from services.runtime.node import Node
+    from services.runtime.parameter import Parameter
+    from services.runtime.parameters import ParameterException
     from services.runtime.publisher import Publisher
     from services.runtime.service import Service
     from services.runtime.settings import NodeSettings
@@ -56,6 +58,8 @@ __all__ = [
     "NodeError",
     "NodeLogger",
     "NodeSettings",
+    "Parameter",
+    "ParameterException",
     "Publisher",
     "Service",
     "ServiceCallRejectedError",
@@ -79,6 +83,8 @@ _HOMES = {
     "NodeError": "services.runtime.errors",
     "NodeLogger": "services.runtime.logger",
     "NodeSettings": "services.runtime.settings",
+    "Parameter": "services.runtime.parameter",
+    "ParameterException": "services.runtime.parameters",
     "Publisher": "services.runtime.publisher",
     "Service": "services.runtime.service",
     "ServiceCallRejectedError": "services.runtime.errors",

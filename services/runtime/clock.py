@@ -58,6 +58,14 @@ class Clock:
             return self._sim_ns * 1e-9
         return time.monotonic()
 
+    def set_use_sim_time(self, enabled: bool) -> None:
+        """Follow ``/clock`` (or the wall clock again); waits on the old time base end, and
+        timers start their period over on the new one."""
+        if enabled != self.use_sim_time:
+            self.use_sim_time = enabled
+            self.jumps_back += 1
+            self._advanced.set()
+
     def set_sim_time(self, stamp: Time) -> None:
         """Advance sim time to ``stamp`` (called for each ``/clock`` message)."""
         sim_ns = stamp.sec * 1_000_000_000 + stamp.nanosec

@@ -18,8 +18,13 @@ from services.runtime.clock import Clock
 from services.runtime.errors import NodeError
 from services.runtime.http_client import HttpClient
 from services.runtime.logger import NodeLogger
+from services.runtime.node_parameters import ParametersMixin
+from services.runtime.parameter import Parameter
+from services.runtime.parameter_service import PARAMETER_EVENTS, parameter_services
+from services.runtime.parameters import NodeParameters
 from services.runtime.participant import Participant
 from services.runtime.publisher import Publisher
+from services.runtime.ros_args import parse_ros_args, process_ros_arguments
 from services.runtime.server import AppServer
 from services.runtime.service import Service
 from services.runtime.session import CoreSession, RegistrationRejected
@@ -28,7 +33,7 @@ from services.runtime.subscription import Subscription
 from services.runtime.timer import Timer
 from shared_models import Message, ServiceType, resolve_name, resolve_node_name
 from shared_models.builtin_interfaces import Time
-from shared_models.rcl_interfaces import Log
+from shared_models.rcl_interfaces import Log, ParameterDescriptor, ParameterEvent
 
 __all__ = ["Node"]
 
@@ -38,7 +43,7 @@ _ROSOUT = "/rosout"
 _CLOCK = "/clock"
 
 
-class Node:
+class Node(ParametersMixin):
     """A Skydeck node, written like an rclpy node::
 
         class SendMessageNode(Node):
@@ -51,9 +56,24 @@ class Node:
     to and serves lives in its :class:`~services.runtime.participant.Participant`, served by its
     own uvicorn (:class:`~services.runtime.server.AppServer`) and registered over a
     :class:`~services.runtime.session.CoreSession`.
+
+    Parameters (:mod:`services.runtime.node_parameters`) take their overrides from this
+    process's ``--ros-args`` (unless ``use_global_arguments=False``), then ``cli_args``, then
+    ``parameter_overrides``; every node serves them as ROS 2's parameter services.
     """
 
-    def __init__(self, node_name: str, *, settings: NodeSettings | None = None) -> None:
+    def __init__(
+        self,
+        node_name: str,
+        *,
+        settings: NodeSettings | None = None,
+        cli_args: list[str] | None = None,
+        use_global_arguments: bool = True,
+        parameter_overrides: list[Parameter] | None = None,
+        allow_undeclared_parameters: bool = False,
+        automatically_declare_parameters_from_overrides: bool = False,
+        start_parameter_services: bool = True,
+    ) -> None:
         self.settings = settings or process_settings(NodeSettings)
         self._name = resolve_node_name(node_name)
         self._clock = Clock(use_sim_time=self.settings.use_sim_time)
@@ -82,8 +102,32 @@ class Node:
         self._http: HttpClient | None = None
         self._rosout = self.create_publisher(Log, _ROSOUT, 100)
         self._logger = NodeLogger(self._name, self._stamp, self._rosout.publish, level=self.settings.log_level)
-        if self.settings.use_sim_time:
-            self.create_subscription(Time, _CLOCK, self._clock.set_sim_time, 1)
+        self._clock_subscription: Subscription | None = None
+        self._parameter_events = self.create_publisher(ParameterEvent, PARAMETER_EVENTS, 1000)
+        arguments = process_ros_arguments() if use_global_arguments else None
+        if cli_args:
+            arguments = (arguments + parse_ros_args(cli_args)) if arguments else parse_ros_args(cli_args)
+        overrides: dict[str, Any] = arguments.overrides_for(self._name) if arguments else {}
+        overrides.update({p.name: p for p in parameter_overrides or ()})
+        self._parameters = NodeParameters(
+            self._name,
+            overrides=overrides,
+            allow_undeclared_parameters=allow_undeclared_parameters,
+            on_event=self._publish_parameter_event,
+        )
+        self._parameters.add_post_set_callback(self._parameters_changed)
+        self.declare_parameter(
+            "use_sim_time",
+            self.settings.use_sim_time,
+            ParameterDescriptor(description="follow /clock (the simulator's time) instead of the wall clock"),
+        )
+        if automatically_declare_parameters_from_overrides:
+            for name, value in overrides.items():
+                if not self.has_parameter(name):
+                    self.declare_parameter(name, value)
+        if start_parameter_services:
+            for srv_type, srv_name, handler in parameter_services(self._name, self._parameters, self._logger.logger):
+                self.create_service(srv_type, srv_name, handler)
 
     # -- identity -----------------------------------------------------------------------------
 
@@ -110,6 +154,21 @@ class Node:
 
     def _stamp(self) -> Time:
         return self._clock.now().to_msg()
+
+    def _publish_parameter_event(self, event: ParameterEvent) -> None:
+        event.stamp = self._stamp()
+        self._parameter_events.publish(event)
+
+    def _parameters_changed(self, parameters: list[Parameter]) -> None:
+        for parameter in parameters:
+            if parameter.name == "use_sim_time":
+                self._use_sim_time(bool(parameter.value))
+
+    def _use_sim_time(self, enabled: bool) -> None:
+        """Switch the clock (timers follow within a period); /clock is subscribed on first use."""
+        self._clock.set_use_sim_time(enabled)
+        if enabled and self._clock_subscription is None:
+            self._clock_subscription = self.create_subscription(Time, _CLOCK, self._clock.set_sim_time, 1)
 
     # -- entities -----------------------------------------------------------------------------
 

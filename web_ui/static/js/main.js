@@ -11,6 +11,7 @@ import { Inspector } from "./inspector.js";
 import { Layers } from "./layers.js";
 import { LayersPanel } from "./layers_panel.js";
 import { MapView } from "./map.js";
+import { ParametersPanel } from "./parameters.js";
 import { Plots } from "./plots.js";
 import { StatusBanner } from "./status.js";
 import { Tabs } from "./tabs.js";
@@ -85,6 +86,7 @@ const layersPanel = new LayersPanel({
   form: $("add-topic-form"),
   list: $("layer-list"),
 });
+const parameters = new ParametersPanel({ node: $("param-node"), table: $("param-list"), result: $("param-result"), refresh: $("param-refresh") });
 
 graph.addEventListener("update", () => {
   commands.updateGraph(graph.graph);
@@ -93,6 +95,7 @@ graph.addEventListener("update", () => {
   if (tabs.current === "graph") diagram.render(graph.graph);
   inspector.updateGraph(graph.graph);
   layersPanel.updateGraph(graph.graph);
+  parameters.updateGraph(graph.graph);
 });
 function expandGraph(expanded) {
   const button = $("graph-expand");
@@ -106,6 +109,7 @@ window.addEventListener("keydown", (event) => {
 });
 tabs.addEventListener("change", () => {
   if (tabs.current === "graph" && graph.graph) diagram.render(graph.graph);
+  parameters.setVisible(tabs.current === "parameters");
 });
 
 const teleop = new Teleop({
@@ -190,6 +194,9 @@ window.skydeck = Object.freeze({
   },
   get banner() {
     return { state: $("status-banner").dataset.state, text: status.message };
+  },
+  get parameters() {
+    return { node: parameters.node, rows: copy(parameters.rows), last: copy(parameters.last) };
   },
   layers: () => layers.snapshot(),
   sockets: () => socketStates(),

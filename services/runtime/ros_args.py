@@ -1,0 +1,238 @@
+"""ROS 2 command-line arguments: ``--ros-args -p NAME:=VALUE --params-file FILE.yaml``.
+
+    skydeck run ai --landing home --ros-args -p visit_radius:=0.5 --params-file ai.yaml
+
+Everything between ``--ros-args`` and ``--`` (or the end) is ROS's; the rest is the program's.
+Values are read as YAML, as ROS does: ``-p speed:=0.3`` is a double, ``-p name:=robot1`` a string,
+``-p flags:=[1,2]`` an integer array; ``-p NODE:NAME:=VALUE`` sets it for one node only. A params
+file is ROS 2's::
+
+    /ai:                      # a node's full name, or /** for every node
+      ros__parameters:
+        visit_radius: 0.5
+        gains: {p: 1.0}       # nested names: gains.p
+
+Only parameters are read today; remapping (``-r``), ``__ns`` and ``__node`` belong here too.
+One process has one set (:func:`set_process_ros_arguments`), which every node in it reads, as
+ROS's global arguments.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from services.runtime.parameter import Parameter
+from shared_models.errors import SkydeckError
+
+__all__ = [
+    "ParameterRule",
+    "RosArguments",
+    "RosArgumentsError",
+    "parameter_value",
+    "parse_ros_args",
+    "process_ros_arguments",
+    "rules_from_params_yaml",
+    "set_process_ros_arguments",
+    "split_ros_args",
+]
+
+ROS_ARGS = "--ros-args"
+_END = "--"
+_PARAMETERS_KEY = "ros__parameters"
+
+
+class RosArgumentsError(SkydeckError):
+    """A ``--ros-args`` argument or params file Skydeck cannot read (the message says which)."""
+
+    http_status = 400
+
+
+@dataclass(frozen=True)
+class ParameterRule:
+    """Parameter values for the nodes whose full name matches ``node`` (``/**``: every node)."""
+
+    node: str
+    values: dict[str, Any]
+
+    def matches(self, node_name: str) -> bool:
+        return _node_pattern(self.node).fullmatch(node_name) is not None
+
+
+@dataclass
+class RosArguments:
+    """The ROS arguments of a process (or of one node's ``cli_args``), in the order given."""
+
+    parameter_rules: list[ParameterRule] = field(default_factory=list)
+
+    def overrides_for(self, node_name: str) -> dict[str, Any]:
+        """The parameter values meant for ``node_name``; a later rule wins over an earlier one."""
+        values: dict[str, Any] = {}
+        for rule in self.parameter_rules:
+            if rule.matches(node_name):
+                values.update(rule.values)
+        return values
+
+    def __add__(self, other: RosArguments) -> RosArguments:
+        return RosArguments(self.parameter_rules + other.parameter_rules)
+
+
+def split_ros_args(argv: list[str]) -> tuple[list[str], list[str]]:
+    """(the program's arguments, the ROS arguments without the ``--ros-args``/``--`` markers)."""
+    program: list[str] = []
+    ros: list[str] = []
+    inside = False
+    for arg in argv:
+        if arg == ROS_ARGS:
+            inside = True
+        elif inside and arg == _END:
+            inside = False
+        else:
+            (ros if inside else program).append(arg)
+    return program, ros
+
+
+def parse_ros_args(args: list[str]) -> RosArguments:
+    """Read ROS arguments (what follows ``--ros-args``); one clear error for anything else."""
+    parsed = RosArguments()
+    words = iter(args)
+    for word in words:
+        if word in ("-p", "--param"):
+            parsed.parameter_rules.append(_parameter_assignment(_next(words, word, "NAME:=VALUE")))
+        elif word == "--params-file":
+            parsed.parameter_rules.extend(_params_file(_next(words, word, "FILE.yaml")))
+        elif word in ("-r", "--remap", "-e", "--enclave", "--log-level", "--log-config-file"):
+            raise RosArgumentsError(f"--ros-args {word} is not supported by Skydeck yet (only -p and --params-file are)")
+        else:
+            raise RosArgumentsError(f"unknown ROS argument {word!r}: Skydeck reads -p NAME:=VALUE and --params-file FILE")
+    return parsed
+
+
+def _next(words: Any, flag: str, what: str) -> str:
+    try:
+        return str(next(words))
+    except StopIteration:
+        raise RosArgumentsError(f"--ros-args {flag} needs {what}") from None
+
+
+def _parameter_assignment(text: str) -> ParameterRule:
+    target, separator, value_text = text.partition(":=")
+    if not separator or not target:
+        raise RosArgumentsError(f"-p {text!r}: expected NAME:=VALUE, e.g. -p speed:=0.3")
+    node, _, name = target.rpartition(":")
+    try:
+        value = parameter_value(value_text)
+    except RosArgumentsError as error:
+        raise RosArgumentsError(f"-p {text}: {error}") from None
+    return ParameterRule(node or "/**", {name: value})
+
+
+def parameter_value(text: str) -> Any:
+    """A parameter value as typed on a command line, read as YAML (``0.3``, ``true``, ``[1, 2]``).
+
+    A scalar YAML reads as something else than a parameter value (``null``, a date) stays the
+    text as typed, a string; an empty text is the empty string.
+    """
+    try:
+        value = yaml.safe_load(text) if text.strip() else ""
+    except yaml.YAMLError:
+        value = text
+    try:
+        Parameter.Type.from_parameter_value(value)
+    except TypeError:
+        if isinstance(value, dict | list):
+            raise RosArgumentsError(
+                f"{text!r} is not a parameter value: a number, true/false, a string, or a list of "
+                "one of those (e.g. [1, 2])"
+            ) from None
+        return text
+    if value is None:
+        return text
+    return value
+
+
+def _params_file(path_text: str) -> list[ParameterRule]:
+    path = Path(path_text)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as error:
+        raise RosArgumentsError(f"--params-file {path}: cannot read it ({error.strerror or error})") from None
+    try:
+        return rules_from_params_yaml(text)
+    except RosArgumentsError as error:
+        raise RosArgumentsError(f"--params-file {path}: {error}") from None
+
+
+def rules_from_params_yaml(text: str) -> list[ParameterRule]:
+    """The rules of a ROS 2 params file (``/node: {ros__parameters: {...}}``), in file order."""
+    try:
+        document = yaml.safe_load(text)
+    except yaml.YAMLError as error:
+        mark = getattr(error, "problem_mark", None)
+        raise RosArgumentsError(f"not valid YAML{f' (line {mark.line + 1})' if mark else ''}") from None
+    if not isinstance(document, dict):
+        raise RosArgumentsError("expected a mapping of node names to {ros__parameters: {...}}")
+    rules: list[ParameterRule] = []
+    _collect_rules(document, "", rules)
+    return rules
+
+
+def _collect_rules(mapping: dict[Any, Any], namespace: str, rules: list[ParameterRule]) -> None:
+    for key, body in mapping.items():
+        node = _join_node(namespace, str(key))
+        if not isinstance(body, dict):
+            raise RosArgumentsError(f"{node}: expected {{{_PARAMETERS_KEY}: {{...}}}}, got {body!r}")
+        if _PARAMETERS_KEY in body:
+            parameters = body[_PARAMETERS_KEY] or {}
+            if not isinstance(parameters, dict):
+                raise RosArgumentsError(f"{node}: {_PARAMETERS_KEY} must be a mapping of names to values")
+            rules.append(ParameterRule(node, _flattened(parameters, "", node)))
+        else:  # a namespace: /ns: {node: {ros__parameters: ...}}
+            _collect_rules(body, node, rules)
+
+
+def _join_node(namespace: str, key: str) -> str:
+    return f"{namespace.rstrip('/')}/{key.strip('/')}" if namespace else "/" + key.lstrip("/")
+
+
+def _flattened(parameters: dict[Any, Any], prefix: str, node: str) -> dict[str, Any]:
+    values: dict[str, Any] = {}
+    for key, value in parameters.items():
+        name = f"{prefix}{key}"
+        if isinstance(value, dict):
+            values.update(_flattened(value, name + ".", node))
+            continue
+        try:
+            Parameter.Type.from_parameter_value(value)
+        except TypeError as error:
+            raise RosArgumentsError(f"{node} parameter {name!r}: {error}") from None
+        values[name] = value
+    return values
+
+
+def _node_pattern(pattern: str) -> re.Pattern[str]:
+    """ROS's node name wildcards: ``**`` any run of tokens, ``*`` one token."""
+    if not pattern.startswith("/"):
+        pattern = "/" + pattern
+    parts = re.split(r"(\*\*|\*)", pattern)
+    regex = "".join(".*" if p == "**" else "[^/]*" if p == "*" else re.escape(p) for p in parts)
+    return re.compile(regex)
+
+
+# -- this process's arguments -------------------------------------------------------------------
+
+_process = RosArguments()
+
+
+def set_process_ros_arguments(arguments: RosArguments) -> None:
+    """The ROS arguments of this process's command line (``skydeck run``), read by every node."""
+    global _process
+    _process = arguments
+
+
+def process_ros_arguments() -> RosArguments:
+    return _process
