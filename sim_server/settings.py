@@ -7,6 +7,7 @@ import math
 from typing import Literal
 
 from pydantic import Field, ValidationInfo, field_validator
+from pydantic_core import PydanticCustomError
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 from sim_server.limits import DEFAULT_BOXES, MAX_BOXES
@@ -56,7 +57,9 @@ class SimSettings(BaseSettings):
     @classmethod
     def _robot_world_only(cls, value: int | None, info: ValidationInfo) -> int | None:
         if value is not None and info.data.get("world") != "robot":
-            raise ValueError(f"{info.field_name} belong to the robot world: add --world robot")
+            raise PydanticCustomError(
+                "robot_world_only", f"only the robot world has {info.field_name}: add --world robot"
+            )
         return value
 
     @property

@@ -159,9 +159,9 @@ def create_neato(client: int, x: float, y: float, yaw: float) -> NeatoBody:
         ],
         physicsClientId=client,
     )
-    wheel_shape = p.createCollisionShape(
-        p.GEOM_CYLINDER, radius=WHEEL_RADIUS_M, height=WHEEL_WIDTH_M, physicsClientId=client
-    )
+    # A wheel touches the floor as a sphere of its radius: one contact point, as a narrow tyre
+    # has, where a cylinder's contact line scrubs sideways when the robot turns in place.
+    wheel_shape = p.createCollisionShape(p.GEOM_SPHERE, radius=WHEEL_RADIUS_M, physicsClientId=client)
     wheel_visual = p.createVisualShape(
         p.GEOM_CYLINDER,
         radius=WHEEL_RADIUS_M,

@@ -60,11 +60,6 @@ class WheelOdometry:
     _left: float | None = None
     _right: float | None = None
 
-    def reset(self) -> None:
-        """Back to the origin; the next reading is the new zero of both encoders."""
-        self.x = self.y = self.yaw = self.linear = self.angular = 0.0
-        self._left = self._right = None
-
     def update(self, left: float, right: float, left_rate: float, right_rate: float) -> None:
         """Take one reading of the encoders (angles, rad) and wheel rates (rad/s)."""
         r = WHEEL_RADIUS_M

@@ -28,7 +28,8 @@ from sim_server.robot.limits import (
 
 __all__ = ["Obstacle", "PersonLoop", "place_obstacles"]
 
-_MAX_TRIES_PER_OBSTACLE = 2000
+_MAX_TRIES_PER_OBSTACLE = 500
+_MAX_ATTEMPTS = 20
 _LOOP_SEGMENTS = 720
 
 
@@ -89,10 +90,19 @@ class PersonLoop:
 
 def place_obstacles(rng: random.Random, count: int, loop: PersonLoop) -> list[Obstacle]:
     """Draw ``count`` box obstacles: uniform in the room's inner square, each drawn again until
-    it keeps its distances (see the module's docstring).
+    it keeps its distances (see the module's docstring); a set that gets stuck (no room left
+    for the next box) is drawn again from the start.
 
     Raises ValueError when they cannot be placed (far more than the room holds).
     """
+    for _attempt in range(_MAX_ATTEMPTS):
+        placed = _try_to_place(rng, count, loop)
+        if placed is not None:
+            return placed
+    raise ValueError(f"cannot place {count} obstacles apart in the room; use fewer")
+
+
+def _try_to_place(rng: random.Random, count: int, loop: PersonLoop) -> list[Obstacle] | None:
     placed: list[Obstacle] = []
     inner = ROOM_HALF_SIZE_M - WALL_LANE_M
     robot_room = ROBOT_RADIUS_M + OBSTACLE_GAP_M
@@ -123,5 +133,5 @@ def place_obstacles(rng: random.Random, count: int, loop: PersonLoop) -> list[Ob
             placed.append(candidate)
             break
         else:
-            raise ValueError(f"cannot place {count} obstacles apart in the room; use fewer")
+            return None
     return placed

@@ -55,7 +55,7 @@ from sim_server.robot.limits import (
 from sim_server.robot.scan import Laser
 from sim_server.world import yaw_of
 
-__all__ = ["Bump", "RobotWorld", "RobotWorldConfig"]
+__all__ = ["Bump", "RobotWorld", "RobotWorldConfig", "bumper_part"]
 
 _WHEEL_TORQUE_NM = MAX_WHEEL_FORCE_N * WHEEL_RADIUS_M
 _FRONT_DEG = 45.0
@@ -196,11 +196,11 @@ class RobotWorld:
         step_simulation = p.stepSimulation
         steps = self._steps
         for _ in range(n):
-            if steps % CONTROL_EVERY_STEPS == 0:
-                self._control(steps * PHYSICS_DT_S)
             step_simulation(physicsClientId=client)
             steps += 1
             self._steps = steps
+            if steps % CONTROL_EVERY_STEPS == 0:  # after the step: odometry is never stale
+                self._control(steps * PHYSICS_DT_S)
 
     def _control(self, now_s: float) -> None:
         """The 60 Hz tick: watchdog and wheel motors, encoders, and the person's next stride."""
@@ -274,19 +274,12 @@ class RobotWorld:
         self._check_open()
         body = self._robots[robot].body
         x, y, yaw = self.robot_pose(robot)
-        left_front = left_side = right_front = right_side = False
+        touched = set()
         for contact in p.getContactPoints(bodyA=body, linkIndexA=-1, physicsClientId=self._client):
-            if contact[2] == self._floor:
-                continue
-            cx, cy = contact[5][0] - x, contact[5][1] - y  # the point on this robot
-            bearing = math.degrees(math.remainder(math.atan2(cy, cx) - yaw, math.tau))
-            if abs(bearing) <= _FRONT_DEG:
-                left_front |= bearing >= 0.0
-                right_front |= bearing < 0.0
-            elif abs(bearing) <= _SIDE_DEG:
-                left_side |= bearing > 0.0
-                right_side |= bearing < 0.0
-        return Bump(left_front, left_side, right_front, right_side)
+            if contact[2] != self._floor:
+                cx, cy = contact[5][0] - x, contact[5][1] - y  # the point on this robot
+                touched.add(bumper_part(math.degrees(math.atan2(cy, cx) - yaw)))
+        return Bump(**{part: True for part in touched if part})
 
     def person_pose(self) -> tuple[float, float, float]:
         """Where the person is: the midpoint between the legs (m) and the way they face (rad)."""
@@ -321,6 +314,7 @@ class RobotWorld:
         self._walked_m = 0.0
         x, y, heading = self.loop.at(0.0)
         self._person, self._person_constraint = create_person(client, x, y, heading)
+        self._control(self.time_s)  # the encoders' zero
 
 
 def _drive_wheels(
@@ -339,3 +333,16 @@ def _drive_wheels(
         body, (0, 1), p.VELOCITY_CONTROL, targetVelocities=wheel_speeds(*command),
         forces=(_WHEEL_TORQUE_NM, _WHEEL_TORQUE_NM), physicsClientId=client,
     )  # fmt: skip
+
+
+def bumper_part(bearing_deg: float) -> str | None:
+    """The Neato bumper switch that a touch at ``bearing_deg`` (counter-clockwise from straight
+    ahead) presses: ``left_front``, ``left_side``, ``right_front``, ``right_side``, or None
+    behind the bumper."""
+    bearing = math.remainder(bearing_deg, 360.0)
+    side = "left" if bearing >= 0.0 else "right"
+    if abs(bearing) <= _FRONT_DEG:
+        return f"{side}_front"
+    if abs(bearing) <= _SIDE_DEG:
+        return f"{side}_side"
+    return None
