@@ -91,13 +91,13 @@ ROBOT_STARTS_M = ((0.0, 0.0), (0.0, -1.5), (-1.5, 0.0), (-1.5, -1.5))
 seed builds the same room for one robot or four."""
 
 # -- rates (sim time) -----------------------------------------------------------------------------
-CONTROL_EVERY_STEPS = 4
-"""Wheel commands, watchdog, encoders and the person's walk update at 60 Hz."""
+CONTROL_EVERY_STEPS = 8
+"""Wheel commands, watchdog, encoders and the person's walk update at 30 Hz."""
 ODOM_EVERY_STEPS = 8
 """/odom, /tf, /bump and /clock: 30 Hz."""
 TRUTH_EVERY_STEPS = 24
 """/simulator/robots and /simulator/people: 10 Hz."""
 SCAN_EVERY_STEPS = 48
 """/scan: 5 Hz, as the Neato's spinning laser."""
-SOLVER_ITERATIONS = 20
+SOLVER_ITERATIONS = 10
 """Fewer than PyBullet's 50: wheels on a floor converge well within 20, at 60% of the cost."""

@@ -25,6 +25,8 @@ __all__ = ["Laser"]
 
 _START_M = LASER_HOUSING_RADIUS_M + 0.01
 """Where each ray starts, from the laser's centre: outside the housing."""
+_SPAN_M = RANGE_MAX_M - _START_M
+_MIN_FRACTION = (RANGE_MIN_M - _START_M) / _SPAN_M
 
 
 class Laser:
@@ -51,9 +53,8 @@ class Laser:
         reach[:, 1] = y + RANGE_MAX_M * dy
         reach[:, 2] = LASER_HEIGHT_M
         hits = p.rayTestBatch(start, reach, physicsClientId=self._client)
-        span = RANGE_MAX_M - _START_M
-        ranges = []
-        for body, _link, fraction, _position, _normal in hits:
-            distance = _START_M + fraction * span
-            ranges.append(distance if body >= 0 and distance >= RANGE_MIN_M else NO_RETURN)
-        return ranges
+        # hit = (body, link, fraction, position, normal); body -1: no return.
+        return [
+            _START_M + hit[2] * _SPAN_M if hit[0] >= 0 and hit[2] >= _MIN_FRACTION else NO_RETURN
+            for hit in hits
+        ]

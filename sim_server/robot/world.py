@@ -203,7 +203,7 @@ class RobotWorld:
                 self._control(steps * PHYSICS_DT_S)
 
     def _control(self, now_s: float) -> None:
-        """The 60 Hz tick: watchdog and wheel motors, encoders, and the person's next stride."""
+        """The control tick (30 Hz): watchdog and wheel motors, encoders, and the person's next stride."""
         client = self._client
         for robot in self._robots:
             command = robot.command if now_s - robot.command_time_s <= CMD_VEL_TIMEOUT_S else (0.0, 0.0)
