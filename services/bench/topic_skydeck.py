@@ -23,7 +23,7 @@ from typing import Any
 from services.bench.payload import BURST, TOPIC, pose_message, stamp_now
 from services.bench.sink import Sink, emit, topic_arguments, wait_for_stop_async
 from services.runtime import Node, NodeSettings
-from shared_models import get_interface
+from shared_models import Message, get_interface
 from shared_models.geometry_msgs import PoseStamped
 
 _QUEUE = 100
@@ -99,7 +99,10 @@ async def subscriber(args: argparse.Namespace) -> None:
         def on_message(msg: Any) -> None:
             sink.arrive()
 
-    node.create_subscription(get_interface(args.type), args.topic, on_message, _QUEUE)
+    msg_type = get_interface(args.type)
+    if not (isinstance(msg_type, type) and issubclass(msg_type, Message)):
+        raise SystemExit(f"--type {args.type} is a service, not a message")
+    node.create_subscription(msg_type, args.topic, on_message, _QUEUE)
     await node.start()
     try:
         emit("READY", {"url": node.url})

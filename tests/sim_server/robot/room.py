@@ -5,6 +5,9 @@ from __future__ import annotations
 
 import json
 import math
+import os
+import signal
+import sys
 import threading
 import time
 import urllib.error
@@ -15,8 +18,9 @@ from typing import Any
 
 from websockets.sync.client import connect
 
+from services.launch.background import BackgroundProcess
 from tests.conftest import free_port_block
-from tests.web_ui.system import System
+from tests.web_ui.system import REPO, System
 
 
 def start_room(*sim_args: str) -> System:
@@ -102,3 +106,50 @@ def twist_stream(system: System, topic: str = "/cmd_vel", period_s: float = 0.05
         finally:
             stop.set()
             thread.join(5)
+
+
+class Recorder:
+    """Every message of a topic, read through the core in a thread while in a ``with`` block."""
+
+    def __init__(self, system: System, topic: str) -> None:
+        self.messages: list[dict[str, Any]] = []
+        self._url = f"{system.ws_url}{topic}"
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._read, daemon=True)
+        self._connected = threading.Event()
+
+    def __enter__(self) -> Recorder:
+        self._thread.start()
+        if not self._connected.wait(10):
+            raise AssertionError(f"could not read {self._url}")
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._stop.set()
+        self._thread.join(5)
+
+    def _read(self) -> None:
+        with connect(self._url, max_size=None) as websocket:
+            self._connected.set()
+            while not self._stop.is_set():
+                try:
+                    self.messages.append(json.loads(websocket.recv(timeout=0.2)))
+                except TimeoutError:
+                    continue
+
+
+@contextmanager
+def behaviour(system: System, *args: str) -> Iterator[BackgroundProcess]:
+    """``skydeck run ARGS --use-sim-time`` against ``system``'s core; stopped with Ctrl-C (SIGINT)
+    after the block, which must end it cleanly."""
+    process = BackgroundProcess(
+        [sys.executable, "-m", "services.cli", "run", *args[:1], "--use-sim-time", *args[1:]],
+        name=f"skydeck run {' '.join(args)}",
+        cwd=REPO,
+        env={**os.environ, "SKYDECK_CORE_URL": system.url, "PYTHONUNBUFFERED": "1"},
+    )
+    try:
+        yield process
+    finally:
+        process.stop(signal.SIGINT, timeout_s=10)
+    assert not any("Traceback" in line for line in process.lines), process.tail()
