@@ -10,12 +10,15 @@ from __future__ import annotations
 import base64
 import json
 import math
+import urllib.request
 from collections.abc import Iterator
 
 import pytest
 from websockets.exceptions import ConnectionClosed
 from websockets.sync.client import connect
 
+from services.runtime.edge.links import stream_url
+from services.runtime.wire import MAX_MESSAGE_BYTES
 from sim_server.robot.limits import (
     LASER_HEIGHT_M,
     RANGE_MAX_M,
@@ -24,6 +27,7 @@ from sim_server.robot.limits import (
     ROOM_HALF_SIZE_M,
     SCAN_BEAMS,
 )
+from tests.reliability.test_bad_input import _close_of, bad_payloads
 from tests.sim_server.robot.room import (
     call,
     latest,
@@ -158,3 +162,24 @@ def test_the_camera_looks_ahead_of_the_robot(room: System) -> None:
         frame = json.loads(websocket.recv(timeout=20))
     assert frame["format"] == "jpeg"
     assert base64.b64decode(frame["data"])[:2] == b"\xff\xd8"
+
+
+def test_every_bad_frame_on_cmd_vel_is_refused_and_the_simulator_keeps_serving(room: System) -> None:
+    default = latest(room, "/api/interfaces/geometry_msgs/msg/Twist")["default"]
+    cases: dict[str, tuple[str | bytes, int]] = {name: (body.decode(), 1007) for name, body in bad_payloads(default).items()}
+    cases["oversized"] = (json.dumps({"pad": "x" * (MAX_MESSAGE_BYTES + 1)}), 1009)
+    cases["binary"] = (bytes(range(256)), 1003)
+    assert {"NaN", "Infinity", "unknown field", "malformed"} <= set(cases)
+    sim = room.processes["sim"].url
+    for base in (room.url, sim):
+        for case, (payload, expected) in cases.items():
+            code, reason = _close_of(stream_url(base, "/cmd_vel"), payload)
+            assert code == expected, (case, base, code, reason)
+    assert latest(room, "/api/graph") and _health(sim)
+    odom = wait_for(room, "/odom", lambda m: True)
+    assert abs(odom["twist"]["twist"]["linear"]["x"]) < 1e-3  # nothing bad ever drove it
+
+
+def _health(url: str) -> bool:
+    with urllib.request.urlopen(url + "/health", timeout=5) as reply:
+        return reply.status == 200
