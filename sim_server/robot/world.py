@@ -23,11 +23,11 @@ from __future__ import annotations
 import math
 import random
 from dataclasses import dataclass, field
-from types import TracebackType
 
 import pybullet as p
 
-from sim_server.limits import GRAVITY_M_S2, PHYSICS_DT_S
+from sim_server.bullet import BulletWorld
+from sim_server.limits import PHYSICS_DT_S
 from sim_server.robot.bodies import (
     create_floor,
     create_neato,
@@ -104,10 +104,11 @@ class _Robot:
     """The command the motors run now (zero once the watchdog stopped them)."""
 
 
-class RobotWorld:
+class RobotWorld(BulletWorld):
     """A closed room with ``config.robots`` Neatos, ``config.obstacles`` boxes and a person."""
 
     def __init__(self, config: RobotWorldConfig | None = None) -> None:
+        super().__init__()
         self.config = config or RobotWorldConfig()
         seed = self.config.seed
         self.seed: int = random.SystemRandom().getrandbits(32) if seed is None else seed
@@ -115,9 +116,6 @@ class RobotWorld:
         self.obstacles: list[Obstacle] = place_obstacles(
             random.Random(self.seed), self.config.obstacles, self.loop
         )
-        self._steps = 0
-        self._closed = False
-        self._client = p.connect(p.DIRECT)
         self._laser = Laser(self._client)
         self._robots: list[_Robot] = []
         self._person = self._person_constraint = -1
@@ -131,29 +129,6 @@ class RobotWorld:
         the start of the loop; the room stays as it is. The clock keeps running."""
         self._check_open()
         self._build()
-
-    def close(self) -> None:
-        """Disconnect the PyBullet client. Idempotent."""
-        if not self._closed:
-            self._closed = True
-            p.disconnect(physicsClientId=self._client)
-
-    def __enter__(self) -> RobotWorld:
-        return self
-
-    def __exit__(
-        self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        tb: TracebackType | None,
-    ) -> None:
-        self.close()
-
-    @property
-    def client(self) -> int:
-        """The PyBullet physics client id of this world (for rendering)."""
-        self._check_open()
-        return self._client
 
     @property
     def robot_count(self) -> int:
@@ -176,16 +151,6 @@ class RobotWorld:
         return state.command
 
     # -- stepping ------------------------------------------------------------------------------
-
-    @property
-    def time_s(self) -> float:
-        """Sim time: 1/240 s per physics step since the world was created."""
-        return self._steps * PHYSICS_DT_S
-
-    @property
-    def steps(self) -> int:
-        """Physics steps taken since the world was created."""
-        return self._steps
 
     def step(self, n: int = 1) -> None:
         """Advance the world by ``n`` physics steps of 1/240 s."""
@@ -291,16 +256,8 @@ class RobotWorld:
 
     # -- internals -----------------------------------------------------------------------------
 
-    def _check_open(self) -> None:
-        if self._closed:
-            raise RuntimeError("this RobotWorld is closed; create a new one to keep simulating")
-
     def _build(self) -> None:
-        # A full rebuild: no contact caches or solver state survive a reset.
-        client = self._client
-        p.resetSimulation(physicsClientId=client)
-        p.setGravity(0.0, 0.0, -GRAVITY_M_S2, physicsClientId=client)
-        p.setTimeStep(PHYSICS_DT_S, physicsClientId=client)
+        client = self._fresh_simulation()
         p.setPhysicsEngineParameter(numSolverIterations=SOLVER_ITERATIONS, physicsClientId=client)
         self._floor = create_floor(client)
         create_walls(client)

@@ -13,7 +13,6 @@ from __future__ import annotations
 import asyncio
 import os
 import pty
-import re
 import shlex
 import signal
 import subprocess
@@ -25,12 +24,12 @@ import pytest
 
 from services.launch.background import BackgroundProcess
 from tests.e2e.conftest import stop_launch
+from tests.e2e.guide import code_blocks, skydeck_commands
 
 pytestmark = [pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(300)]
 
 ROOT = Path(__file__).resolve().parents[2]
 GUIDE = ROOT / "docs" / "robot.md"
-_BLOCK = re.compile(r"```(\w+)\n(.*?)```", re.S)
 # What each node of the tutorial prints once it has done what the tutorial says.
 _DONE = {
     "examples/robot/my_estop.py": "stopped: the wall is",
@@ -43,27 +42,13 @@ _DONE = {
 }
 
 
-def _blocks(language: str) -> list[str]:
-    return [body for lang, body in _BLOCK.findall(GUIDE.read_text()) if lang == language]
-
-
-def _commands() -> list[list[str]]:
-    commands = []
-    for block in _blocks("sh"):
-        for line in block.splitlines():
-            line = line.split("#", 1)[0].strip()
-            if line.startswith("skydeck "):
-                commands.append(shlex.split(line)[1:])
-    return commands
-
-
 def test_python_in_the_guide_is_the_shipped_file() -> None:
-    (block,) = _blocks("python")
+    (block,) = code_blocks(GUIDE, "python")
     assert block == (ROOT / "examples" / "robot" / "my_estop.py").read_text()
 
 
 def test_every_node_of_the_guide_is_checked() -> None:
-    runs = {args[1] for args in _commands() if args[0] == "run"}
+    runs = {args[1] for args in skydeck_commands(GUIDE) if args[0] == "run"}
     assert runs == {*_DONE, "teleop"}
 
 
@@ -98,7 +83,7 @@ async def test_every_command_in_the_guide_runs(launch) -> None:
             node.stop() if isinstance(node, _Terminal) else _stop(node)
 
     try:
-        for args in _commands():
+        for args in skydeck_commands(GUIDE):
             if args[0] == "launch":
                 stop_node()
                 node = None
