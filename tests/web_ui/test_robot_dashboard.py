@@ -10,7 +10,7 @@ from urllib.parse import urlsplit
 import pytest
 
 from tests.sim_server.robot.room import call, latest, start_room, truth
-from tests.web_ui.conftest import Recorder
+from tests.web_ui.conftest import Recorder, open_dashboard
 from tests.web_ui.system import System
 
 pytestmark = [pytest.mark.browser, pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(120)]
@@ -25,18 +25,13 @@ def room() -> Iterator[System]:
 
 @pytest.fixture
 def dashboard(room: System, browser: object) -> Iterator[tuple[object, Recorder]]:
-    context = browser.new_context(viewport={"width": 1440, "height": 900})  # type: ignore[attr-defined]
-    page = context.new_page()
-    recorder = Recorder()
-    recorder.attach(page)
-    page.goto(room.url + "/")
-    page.wait_for_function(
+    """A fresh page on the dashboard, once it shows the robot."""
+    ready = (
         "window.skydeck && window.skydeck.world.kind === 'robot' && window.skydeck.room.robots.length === 1"
-        " && window.skydeck.room.robots[0].pose !== null",
-        timeout=20_000,
+        " && window.skydeck.room.robots[0].pose !== null"
     )
-    yield page, recorder
-    context.close()
+    with open_dashboard(browser, room.url, ready) as opened:
+        yield opened
 
 
 def test_the_map_shows_the_room_the_robot_the_person_and_the_scan(dashboard, room: System) -> None:  # type: ignore[no-untyped-def]
