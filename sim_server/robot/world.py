@@ -258,7 +258,11 @@ class RobotWorld(BulletWorld):
 
     def _build(self) -> None:
         client = self._fresh_simulation()
-        p.setPhysicsEngineParameter(numSolverIterations=SOLVER_ITERATIONS, physicsClientId=client)
+        # Bullet's pyramid friction: with its default cone friction the wheels of a robot turning
+        # on the spot slip by a degree or more at some headings, and odometry drifts with it.
+        p.setPhysicsEngineParameter(
+            numSolverIterations=SOLVER_ITERATIONS, enableConeFriction=0, physicsClientId=client
+        )
         self._floor = create_floor(client)
         create_walls(client)
         for obstacle in self.obstacles:

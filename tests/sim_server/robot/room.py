@@ -24,12 +24,14 @@ from tests.web_ui.system import REPO, System
 
 
 def start_room(*sim_args: str) -> System:
-    """The core and the robot world's simulator on free ports (the caller stops it)."""
+    """The core and the robot world's simulator on free ports, once the core knows the
+    simulator's names (the caller stops it)."""
     base = free_port_block(2)
     system = System(base)
     try:
         system.start("core", ["core"], base)
         system.start("sim", ["run", "sim", "--world", "robot", *sim_args], base + 1)
+        wait_for(system, "/simulator/world", lambda m: True)  # registered: the core routes its names
     except BaseException:
         system.stop()
         raise
