@@ -47,11 +47,16 @@ def points(scan: LaserScan, centre_deg: float = 0.0, half_width_deg: float = 180
 
 @dataclass(frozen=True, slots=True)
 class Cluster:
-    """Neighbouring returns that belong together: their centre (x, y) and width (m)."""
+    """Neighbouring returns that belong together: their centre (x, y), width (m, first to last
+    return), how many returns, and whether it stands out in front of what the beams either side
+    of it see (nothing, or something at least ``stand_out_m`` further): a leg in front of a wall
+    does; a piece of wall seen at a grazing angle does not."""
 
     x: float
     y: float
     width: float
+    count: int
+    stands_out: bool
 
     @property
     def distance(self) -> float:
@@ -62,34 +67,56 @@ class Cluster:
         return math.atan2(self.y, self.x)
 
 
-def clusters(scan: LaserScan, gap_m: float = 0.1) -> list[Cluster]:
+def clusters(scan: LaserScan, gap_m: float = 0.1, stand_out_m: float = 0.2) -> list[Cluster]:
     """The returns split wherever two neighbouring beams' points are more than ``gap_m`` apart
     (or one has no return), in beam order; the scan's ends join (it is a full circle)."""
-    runs: list[list[tuple[float, float]]] = []
-    run: list[tuple[float, float]] = []
-    previous: tuple[float, float] | None = None
-    for i, r in enumerate(scan.ranges):
+    ranges = scan.ranges
+    n = len(ranges)
+
+    def point(i: int) -> tuple[float, float]:
+        angle = scan.angle_min + i * scan.angle_increment
+        return ranges[i] * math.cos(angle), ranges[i] * math.sin(angle)
+
+    runs: list[list[int]] = []
+    run: list[int] = []
+    for i, r in enumerate(ranges):
         if not _valid(scan, r):
             if run:
                 runs.append(run)
-            run, previous = [], None
+            run = []
             continue
-        angle = scan.angle_min + i * scan.angle_increment
-        point = (r * math.cos(angle), r * math.sin(angle))
-        if previous is not None and math.dist(point, previous) > gap_m:
+        if run and math.dist(point(i), point(run[-1])) > gap_m:
             runs.append(run)
             run = []
-        run.append(point)
-        previous = point
+        run.append(i)
     if run:
         runs.append(run)
-    full_circle = len(scan.ranges) * scan.angle_increment >= math.tau - 1e-6
-    if full_circle and len(runs) > 1 and math.dist(runs[0][0], runs[-1][-1]) <= gap_m:
+    full_circle = n * scan.angle_increment >= math.tau - 1e-6
+    wraps = full_circle and len(runs) > 1 and runs[0][0] == 0 and runs[-1][-1] == n - 1
+    if wraps and math.dist(point(0), point(n - 1)) <= gap_m:
         runs[0] = runs.pop() + runs[0]
-    return [
-        Cluster(sum(x for x, _ in run) / len(run), sum(y for _, y in run) / len(run), math.dist(run[0], run[-1]))
-        for run in runs
-    ]
+
+    def stands_out(edge: int, neighbour: int) -> bool:
+        if not 0 <= neighbour < n:
+            if not full_circle:
+                return True
+            neighbour %= n
+        r = ranges[neighbour]
+        return not _valid(scan, r) or r >= ranges[edge] + stand_out_m
+
+    found = []
+    for indices in runs:
+        xy = [point(i) for i in indices]
+        found.append(
+            Cluster(
+                x=sum(x for x, _ in xy) / len(xy),
+                y=sum(y for _, y in xy) / len(xy),
+                width=math.dist(xy[0], xy[-1]),
+                count=len(xy),
+                stands_out=stands_out(indices[0], indices[0] - 1) and stands_out(indices[-1], indices[-1] + 1),
+            )
+        )
+    return found
 
 
 @dataclass(frozen=True, slots=True)

@@ -1,13 +1,15 @@
 """Follow a walking person at a set distance, seen by the laser alone.
 
-At the laser's height a person is two legs: two small clusters of returns (each at most 25 cm
-across, where walls and boxes make long ones) a step apart. The follower splits each scan into
-clusters, pairs leg-sized ones that are less than 60 cm apart into people (a leg on its own
-counts too: one leg often hides the other), and keeps following the one nearest to where its
-person was last seen (in the odom frame, so the robot's own motion does not confuse it). It
-turns towards the person and drives to keep ``distance`` metres from them, slowing while the
-person is off to the side; a person lost for more than a second makes it stop and turn the way
-they were last seen.
+At the laser's height a person is two legs: two small clusters of returns a step apart, each
+at most 25 cm across (walls and boxes make long ones) and standing out in front of what lies
+behind it (a far wall seen at a slant breaks into small pieces that do not). The follower
+splits each scan into clusters and pairs leg-sized ones less than 60 cm apart into people; a
+leg on its own counts too, since one leg often hides the other. It takes the nearest candidate
+that moved since the last scan (people walk; a box's corner that looks like a leg does not),
+then follows the one nearest to where its person was last seen (in the odom frame, so the
+robot's own motion does not confuse it): it turns towards the person and drives to keep
+``distance`` metres from them, slower while the person is off to the side. A person lost for
+more than a second makes it stop and turn the way they were last seen.
 
     skydeck run person_follower --ros-args -p distance:=0.8
 """
@@ -27,6 +29,7 @@ _LEG_MAX_WIDTH_M = 0.25
 _STEP_M = 0.6  # two legs further apart than this are two people
 _TRACK_GATE_M = 1.0  # a person seen further than this from the last sighting is someone else
 _LOST_S = 1.0
+_MOVED_M = 0.02  # a candidate this far from where one was in the last scan is walking
 _TURN_GAIN = 2.5
 _MAX_TURN = 1.8
 _SPEED_GAIN = 3.0
@@ -38,7 +41,10 @@ def find_people(
 ) -> list[tuple[float, float]]:
     """People in the laser's frame (x, y): pairs of leg-sized clusters, then (``lone_legs``)
     single legs."""
-    legs = [c for c in clusters(scan) if c.width <= _LEG_MAX_WIDTH_M and c.distance <= max_range_m]
+    legs = [
+        c for c in clusters(scan)
+        if c.count >= 2 and c.width <= _LEG_MAX_WIDTH_M and c.stands_out and c.distance <= max_range_m
+    ]  # fmt: skip
     people: list[tuple[float, float]] = []
     used: set[int] = set()
     pairs = sorted(
@@ -67,19 +73,24 @@ class PersonFollower:
         self.target: tuple[float, float] | None = None
         self.seen_at_s = -math.inf
         self.state = "searching"
+        self._scan: LaserScan | None = None
+        self._seen: list[tuple[float, float]] = []
+        self._before: list[tuple[float, float]] = []
 
     def update(self, scan: LaserScan, pose: Pose2D, now_s: float) -> tuple[float, float]:
-        c, s = math.cos(pose.yaw), math.sin(pose.yaw)
-        # A new person must show both legs (a lone leg-sized return may be a box's corner); one
-        # already followed may show one.
-        people = find_people(scan, lone_legs=self.target is not None)
-        seen = [(pose.x + c * x - s * y, pose.y + s * x + c * y) for x, y in people]
+        if scan is not self._scan:  # a new scan: who is where now, and where before
+            self._scan = scan
+            c, s = math.cos(pose.yaw), math.sin(pose.yaw)
+            self._before = self._seen
+            self._seen = [(pose.x + c * x - s * y, pose.y + s * x + c * y) for x, y in find_people(scan)]
         if self.target is not None:
             tx, ty = self.target
-            seen = [p for p in seen if math.hypot(p[0] - tx, p[1] - ty) <= _TRACK_GATE_M]
-            choice = min(seen, key=lambda p: math.hypot(p[0] - tx, p[1] - ty), default=None)
+            near = [p for p in self._seen if math.hypot(p[0] - tx, p[1] - ty) <= _TRACK_GATE_M]
+            choice = min(near, key=lambda p: math.hypot(p[0] - tx, p[1] - ty), default=None)
         else:
-            choice = min(seen, key=lambda p: pose.distance_to(*p), default=None)
+            # A new person must be walking: a box's corner can look like a leg, but stays put.
+            walking = [p for p in self._seen if self._moved(p)]
+            choice = min(walking, key=lambda p: pose.distance_to(*p), default=None)
         if choice is not None:
             self.target, self.seen_at_s = choice, now_s
         if self.target is None:
@@ -96,6 +107,12 @@ class PersonFollower:
         turn = max(-_MAX_TURN, min(_MAX_TURN, _TURN_GAIN * bearing))
         speed = max(0.0, min(self.speed, _SPEED_GAIN * gap)) * max(0.0, math.cos(bearing))
         return speed, turn
+
+    def _moved(self, p: tuple[float, float]) -> bool:
+        """Whether the nearest candidate of the scan before is a step's worth away (not the same
+        spot, not someone else)."""
+        nearest = min((math.dist(p, q) for q in self._before), default=math.inf)
+        return _MOVED_M <= nearest <= _TRACK_GATE_M
 
 
 class PersonFollowing(RobotBehaviour):

@@ -122,14 +122,20 @@ def test_the_wall_follower_steers_to_its_distance_and_turns_at_a_corner() -> Non
         WallFollower("up")
 
 
-def test_the_person_follower_keeps_its_distance_and_searches_when_alone() -> None:
+def test_the_person_follower_takes_a_walking_person_and_keeps_its_distance() -> None:
     follower = PersonFollower(distance=0.8, speed=0.3)
-    v, w = follower.update(scan_of(*legs(2.0, 0.5)), Pose2D(0.0, 0.0, 0.0), 0.0)
+    here = Pose2D(0.0, 0.0, 0.0)
+    standing = scan_of(*legs(2.0, 0.5))
+    assert follower.update(standing, here, 0.0) == (0.0, pytest.approx(0.6))  # nobody walked yet
+    assert follower.update(scan_of(*legs(2.0, 0.5)), here, 0.2)[0] == 0.0  # still nobody: legs stay put
+    v, w = follower.update(scan_of(*legs(2.05, 0.5)), here, 0.4)  # they moved: a person
     assert follower.state == "following" and v > 0 and w > 0
     close = PersonFollower(distance=0.8, speed=0.3)
-    assert close.update(scan_of(*legs(0.6, 0.0)), Pose2D(0.0, 0.0, 0.0), 0.0)[0] == 0.0  # near enough: waits
-    assert follower.update(scan_of(), Pose2D(0.0, 0.0, 0.0), 2.0) == (0.0, pytest.approx(0.6, abs=1e-9))
-    assert follower.state == "lost"
+    close.update(scan_of(*legs(0.6, 0.0)), here, 0.0)
+    assert close.update(scan_of(*legs(0.65, 0.0)), here, 0.2)[0] == 0.0  # near enough: it waits
+    v, w = close.update(scan_of(), here, 2.0)  # gone: it stops and turns where they were
+    assert v == 0.0 and abs(w) == pytest.approx(0.6)
+    assert close.state == "lost"
 
 
 def test_the_avoider_takes_the_clear_heading_nearest_the_goal() -> None:

@@ -56,7 +56,8 @@ export class MapView {
   }
 
   fit() {
-    this.view.fit(this.world.kind === "robot" ? ROOM.room_half_size_m + 2 * ROOM.wall_thickness_m : ARENA.fly_half_size_m);
+    // The room with half a metre to spare, so the legend over the map's top hides no wall.
+    this.view.fit(this.world.kind === "robot" ? ROOM.room_half_size_m + ROOM.wall_thickness_m + 0.5 : ARENA.fly_half_size_m);
   }
 
   /** Page (client) coordinates of a map point: where a test or a user would click. */

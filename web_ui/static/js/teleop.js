@@ -75,6 +75,7 @@ export class Teleop {
     this.topic = topic;
     this.topicLabel.textContent = `publishes ${topic}`;
     this.setEnabled(enabled);
+    this._showNote();
   }
 
   setEnabled(enabled) {
@@ -84,11 +85,7 @@ export class Teleop {
     this.toggle.setAttribute("aria-pressed", String(enabled));
     this.toggle.textContent = enabled ? "Teleop ON" : "Teleop off";
     this.keysView.classList.toggle("dim", !enabled);
-    this.note.textContent = enabled
-      ? NOTES[this.kind]
-      : this.kind === "robot"
-        ? "Off: keys do nothing. Without a command for 0.5 s the robot stops by itself."
-        : "Off: keys do nothing. Control's setpoint stream, when active, wins over teleop.";
+    this._showNote();
     if (enabled) {
       this.toggle.blur(); // so space and arrows reach the window, not the button
       this.socket = new TopicSocket(this.topic, { type: TYPE, mode: "publish" }).open();
@@ -97,6 +94,14 @@ export class Teleop {
       this.socket = null;
       setTimeout(() => socket.close(), 300); // let the zero Twist leave first
     }
+  }
+
+  _showNote() {
+    this.note.textContent = this.enabled
+      ? NOTES[this.kind]
+      : this.kind === "robot"
+        ? "Off: keys do nothing. Without a command for 0.5 s the robot stops by itself."
+        : "Off: keys do nothing. Control's setpoint stream, when active, wins over teleop.";
   }
 
   /** The Twist for the keys held now. */
