@@ -85,7 +85,7 @@ class RobotBehaviour(LocalParameters, Node):
 
     def __init__(self, node_name: str, namespace: str = "/", settings: NodeSettings | None = None) -> None:
         super().__init__(node_name, settings=settings)
-        self.namespace = resolve_name("x", namespace).removesuffix("/x") or "/"  # checked
+        self.namespace = "/" if namespace in ("", "/") else resolve_name(namespace)  # checked
         self.sensors = Sensors()
         self.cmd_vel = self.create_publisher(Twist, self.topic("cmd_vel"), 10)
         self.create_subscription(LaserScan, self.topic("scan"), self.sensors.on_scan, 1)

@@ -8,7 +8,6 @@ joint; only the wheels grip the floor.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import pybullet as p
 
@@ -42,7 +41,7 @@ __all__ = [
     "BODY_CENTRE_Z_M",
     "LEFT_WHEEL",
     "RIGHT_WHEEL",
-    "NeatoBody",
+    "WHEELS",
     "create_floor",
     "create_neato",
     "create_obstacle",
@@ -60,19 +59,12 @@ _LEG_RGBA = (0.25, 0.30, 0.55, 1.0)
 
 LEFT_WHEEL = 0
 RIGHT_WHEEL = 1
+WHEELS = (LEFT_WHEEL, RIGHT_WHEEL)
 """Joint (and link) indices of the driven wheels; the caster is link 2."""
 _CASTER = 2
 BODY_CENTRE_Z_M = BODY_BOTTOM_M + BODY_HEIGHT_M / 2.0
 """Height of the body's geometric centre above base_link (the floor)."""
 _PERSON_CENTRE_Z_M = LEG_HEIGHT_M / 2.0 + 0.005  # legs just clear of the floor: no friction
-
-
-@dataclass(frozen=True, slots=True)
-class NeatoBody:
-    """A robot's PyBullet body id and its driven wheels' joint indices."""
-
-    body: int
-    wheels: tuple[int, int] = (LEFT_WHEEL, RIGHT_WHEEL)
 
 
 def create_floor(client: int) -> int:
@@ -134,8 +126,9 @@ def create_obstacle(client: int, obstacle: Obstacle) -> int:
     )
 
 
-def create_neato(client: int, x: float, y: float, yaw: float) -> NeatoBody:
-    """A Neato with base_link at (x, y) on the floor, facing ``yaw``, wheels free."""
+def create_neato(client: int, x: float, y: float, yaw: float) -> int:
+    """A Neato with base_link at (x, y) on the floor, facing ``yaw``; its body id. The wheels'
+    joints are LEFT_WHEEL and RIGHT_WHEEL."""
     body_shape = p.createCollisionShapeArray(
         shapeTypes=[p.GEOM_CYLINDER, p.GEOM_CYLINDER],
         radii=[ROBOT_RADIUS_M, LASER_HOUSING_RADIUS_M],
@@ -202,7 +195,7 @@ def create_neato(client: int, x: float, y: float, yaw: float) -> NeatoBody:
         p.changeDynamics(body, wheel, lateralFriction=WHEEL_FRICTION, physicsClientId=client)
     p.changeDynamics(body, _CASTER, lateralFriction=0.0, physicsClientId=client)
     p.changeDynamics(body, -1, lateralFriction=0.3, physicsClientId=client)
-    return NeatoBody(body)
+    return body
 
 
 def create_person(client: int, x: float, y: float, heading: float) -> tuple[int, int]:

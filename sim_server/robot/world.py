@@ -29,6 +29,7 @@ import pybullet as p
 from sim_server.bullet import BulletWorld
 from sim_server.limits import PHYSICS_DT_S
 from sim_server.robot.bodies import (
+    WHEELS,
     create_floor,
     create_neato,
     create_obstacle,
@@ -118,7 +119,7 @@ class RobotWorld(BulletWorld):
         )
         self._laser = Laser(self._client)
         self._robots: list[_Robot] = []
-        self._person = self._person_constraint = -1
+        self._floor = self._person = self._person_constraint = -1
         self._walked_m = 0.0
         self._build()
 
@@ -132,6 +133,7 @@ class RobotWorld(BulletWorld):
 
     @property
     def robot_count(self) -> int:
+        """How many robots the room has."""
         return len(self._robots)
 
     # -- inputs --------------------------------------------------------------------------------
@@ -173,7 +175,7 @@ class RobotWorld(BulletWorld):
         for robot in self._robots:
             command = robot.command if now_s - robot.command_time_s <= CMD_VEL_TIMEOUT_S else (0.0, 0.0)
             (left_angle, left_rate, *_), (right_angle, right_rate, *_) = p.getJointStates(
-                robot.body, (0, 1), physicsClientId=client
+                robot.body, WHEELS, physicsClientId=client
             )
             robot.odometry.update(left_angle, right_angle, left_rate, right_rate)
             if command != robot.driving:
@@ -223,7 +225,8 @@ class RobotWorld(BulletWorld):
         return self._robots[robot].start
 
     def odometry(self, robot: int) -> WheelOdometry:
-        """What robot ``robot``'s wheel encoders say, in its odom frame (read-only, please)."""
+        """What robot ``robot``'s wheel encoders say, in its odom frame: the live estimate, not a
+        copy (read it; the world updates it)."""
         return self._robots[robot].odometry
 
     def command(self, robot: int) -> tuple[float, float]:
@@ -269,9 +272,9 @@ class RobotWorld(BulletWorld):
             create_obstacle(client, obstacle)
         self._robots = []
         for sx, sy in ROBOT_STARTS_M[: self.config.robots]:
-            neato = create_neato(client, sx, sy, 0.0)
-            _drive_wheels(client, neato.body, (0.0, 0.0), (0.0, 0.0))
-            self._robots.append(_Robot(body=neato.body, start=(sx, sy, 0.0)))
+            body = create_neato(client, sx, sy, 0.0)
+            _drive_wheels(client, body, (0.0, 0.0), (0.0, 0.0))
+            self._robots.append(_Robot(body=body, start=(sx, sy, 0.0)))
         self._walked_m = 0.0
         x, y, heading = self.loop.at(0.0)
         self._person, self._person_constraint = create_person(client, x, y, heading)
@@ -286,12 +289,12 @@ def _drive_wheels(
     velocity target alone lets a robot creep a few millimetres a minute)."""
     if command == (0.0, 0.0):
         p.setJointMotorControlArray(
-            body, (0, 1), p.POSITION_CONTROL, targetPositions=angles,
+            body, WHEELS, p.POSITION_CONTROL, targetPositions=angles,
             forces=(_WHEEL_TORQUE_NM, _WHEEL_TORQUE_NM), physicsClientId=client,
         )  # fmt: skip
         return
     p.setJointMotorControlArray(
-        body, (0, 1), p.VELOCITY_CONTROL, targetVelocities=wheel_speeds(*command),
+        body, WHEELS, p.VELOCITY_CONTROL, targetVelocities=wheel_speeds(*command),
         forces=(_WHEEL_TORQUE_NM, _WHEEL_TORQUE_NM), physicsClientId=client,
     )  # fmt: skip
 

@@ -26,7 +26,7 @@ from services.launch.background import BackgroundProcess
 from tests.e2e.conftest import stop_launch
 from tests.e2e.guide import code_blocks, skydeck_commands
 
-pytestmark = [pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(300)]
+pytestmark = [pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(600)]
 
 ROOT = Path(__file__).resolve().parents[2]
 GUIDE = ROOT / "docs" / "robot.md"
@@ -103,7 +103,7 @@ async def test_every_command_in_the_guide_runs(launch) -> None:
                 node = BackgroundProcess(
                     [sys.executable, "-m", "services.cli", *run], name=f"skydeck {shlex.join(args)}", cwd=ROOT, env=env
                 )
-                await node.await_line(_DONE[args[1]], 90)
+                await node.await_line(_DONE[args[1]], 180)
                 continue
             process = await asyncio.create_subprocess_exec(
                 sys.executable, "-m", "services.cli", *args, cwd=ROOT, env=env,
