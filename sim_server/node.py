@@ -75,8 +75,10 @@ class SimulatorNode(WorldNode):
 
     def _reset_world(self) -> str:
         self.world.reset()
-        self._publish_boxes(self.header())
         return f"drone at the start, {self.sim.boxes} new boxes dropped"
+
+    def _publish_build(self) -> None:
+        self._publish_boxes(self.header())
 
     def _world_fields(self) -> dict[str, Any]:
         return {"world": "drone", "boxes": self.sim.boxes}

@@ -4,7 +4,8 @@ that keeps pace with the wall clock (or runs flat out at ``--speed max``).
 
 A world's node (``sim_server.node.SimulatorNode``, the drone; ``sim_server.robot.node.
 RobotSimNode``) adds its own topics and fills in the hooks: ``PUBLISH_EVERY_STEPS``,
-``_publish_tick``, ``_reset_world``, ``_world_fields`` and ``_render_camera``.
+``_publish_tick``, ``_reset_world``, ``_publish_build``, ``_world_fields`` and
+``_render_camera``.
 """
 
 from __future__ import annotations
@@ -76,7 +77,11 @@ class WorldNode(Node):
         raise NotImplementedError
 
     def _reset_world(self) -> str:
-        """Reset the world and publish what changed; the reset's answer, after 'world reset: '."""
+        """Reset the world's physics; the reset's answer, after 'world reset: '."""
+        raise NotImplementedError
+
+    def _publish_build(self) -> None:
+        """Publish what a new build of the world changes (after its new identity)."""
         raise NotImplementedError
 
     def _world_fields(self) -> dict[str, Any]:
@@ -100,7 +105,10 @@ class WorldNode(Node):
     def on_reset(self, request: TriggerRequest) -> TriggerResponse:
         what = self._reset_world()
         self.resets += 1
+        # The new identity first, then what it changed: a reader of both (the AI) learns of the
+        # new world before it sees the new world's data.
         self.world_info = self._publish_world()
+        self._publish_build()
         self.get_logger().info("world %s: reset %d: %s", self.world_info.id, self.resets, what)
         return TriggerResponse(success=True, message=f"world reset: {what} (world {self.world_info.id})")
 

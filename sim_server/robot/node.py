@@ -121,17 +121,16 @@ class RobotSimNode(WorldNode):
         self.obstacles_publisher: Publisher[MarkerArray] = self.create_publisher(
             MarkerArray, "/simulator/obstacles", 1, latched=True
         )
-        self._publish_static()
         self._announce(
             f"{world.robot_count} robot{'s' if world.robot_count > 1 else ''}, "
             f"{len(world.obstacles)} obstacles"
         )
+        self._publish_build()
 
     # -- the world's hooks --------------------------------------------------------------------
 
     def _reset_world(self) -> str:
         self.world.reset()
-        self._publish_static()
         return "robots at their starts, odometry zeroed, the person at the start of the walk"
 
     def _world_fields(self) -> dict[str, Any]:
@@ -206,7 +205,7 @@ class RobotSimNode(WorldNode):
             person = [_pose(*world.person_pose())]
             self.people_publisher.publish(PoseArray.model_validate({"header": header, "poses": person}))
 
-    def _publish_static(self) -> None:
+    def _publish_build(self) -> None:
         """The transforms that never move, and the room's walls and boxes (once per build)."""
         stamp = self.header().stamp
         transforms = []
