@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: install up test test-deps lint bench clean
+.PHONY: install up robot test test-deps lint bench clean
 
 install: $(STAMP)
 
@@ -18,6 +18,10 @@ $(STAMP): requirements.lock pyproject.toml web_ui/vendor/package-lock.json
 
 up: install
 	$(BIN)/skydeck launch
+
+# The robot world (the second seed's Neato class): the core and the simulator's room.
+robot: install
+	$(BIN)/skydeck launch robot
 
 # System packages the tests drive for real: Debian's Chromium (browser tests) and the
 # docker-compose tool (validates docker-compose.yml without an engine).

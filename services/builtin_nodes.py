@@ -13,4 +13,12 @@ BUILTIN_NODES = {
     "perception": "services.perception.node",
     "control": "services.control.node",
     "ai": "services.ai.node",
+    # The robot world's behaviours (services/behaviours/).
+    "teleop": "services.behaviours.teleop",
+    "drive_square": "services.behaviours.drive_square",
+    "estop": "services.behaviours.estop",
+    "wall_follower": "services.behaviours.wall_follower",
+    "person_follower": "services.behaviours.person_follower",
+    "obstacle_avoider": "services.behaviours.obstacle_avoider",
+    "fsm": "services.behaviours.fsm",
 }

@@ -170,7 +170,10 @@ class SimWorld(Message):
         "# when a restarted simulator builds it. The same seed builds the same boxes, but never\n"
         "# the same id: progress saved for one build is never taken for another.\n"
         "# id: random (64 bits, hex); seed: the simulator's seed; build: 0 for the world it\n"
-        "# started with, +1 at every reset; boxes: how many boxes it dropped"
+        "# started with, +1 at every reset; boxes: how many boxes it dropped (the drone world)\n"
+        "# or stood in the room (the robot world); world: \"drone\" or \"robot\"; namespaces:\n"
+        "# the robot world's robots, where their topics live (\"/\" for one robot, else\n"
+        "# \"/robot1\", \"/robot2\", ...)"
     )
 
     header: Header = Field(default_factory=Header)
@@ -178,3 +181,5 @@ class SimWorld(Message):
     seed: UInt32 = 0
     build: UInt32 = 0
     boxes: Int32 = 0
+    world: String = "drone"
+    namespaces: list[String] = Field(default_factory=list)

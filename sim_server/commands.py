@@ -31,7 +31,7 @@ from sim_server.limits import (
     STREAM_TIMEOUT_S,
 )
 
-__all__ = ["CommandArbiter", "ControlMode", "InvalidCommand"]
+__all__ = ["CommandArbiter", "ControlMode", "InvalidCommand", "finite_number"]
 
 _LEASH_M = 1.0
 """How far a cmd_vel-driven target may run ahead of a drone that cannot keep up."""
@@ -62,7 +62,8 @@ class ControlMode(enum.Enum):
     """No fresh input: holding position (also the offboard failsafe)."""
 
 
-def _number(command: str, field: str, value: object) -> float:
+def finite_number(command: str, field: str, value: object) -> float:
+    """``value`` as a float; InvalidCommand naming ``command`` and ``field`` if it is not one."""
     try:
         number = float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError):
@@ -82,10 +83,10 @@ def check_setpoint(
     x: object, y: object, z: object, yaw: object
 ) -> tuple[float, float, float, float]:
     """Validate a setpoint; returns it as floats with yaw wrapped to [-pi, pi]."""
-    fx = _within("setpoint", "x", _number("setpoint", "x", x), -FLY_HALF_SIZE_M, FLY_HALF_SIZE_M)
-    fy = _within("setpoint", "y", _number("setpoint", "y", y), -FLY_HALF_SIZE_M, FLY_HALF_SIZE_M)
-    fz = _within("setpoint", "z", _number("setpoint", "z", z), 0.0, CEILING_M)
-    fyaw = math.remainder(_number("setpoint", "yaw", yaw), math.tau)
+    fx = _within("setpoint", "x", finite_number("setpoint", "x", x), -FLY_HALF_SIZE_M, FLY_HALF_SIZE_M)
+    fy = _within("setpoint", "y", finite_number("setpoint", "y", y), -FLY_HALF_SIZE_M, FLY_HALF_SIZE_M)
+    fz = _within("setpoint", "z", finite_number("setpoint", "z", z), 0.0, CEILING_M)
+    fyaw = math.remainder(finite_number("setpoint", "yaw", yaw), math.tau)
     return fx, fy, fz, fyaw
 
 
@@ -93,10 +94,10 @@ def check_cmd_vel(
     vx: object, vy: object, vz: object, yaw_rate: object
 ) -> tuple[float, float, float, float]:
     """Validate a velocity command; returns it clamped to the speed limits."""
-    fvx = _number("cmd_vel", "vx", vx)
-    fvy = _number("cmd_vel", "vy", vy)
-    fvz = _number("cmd_vel", "vz", vz)
-    frate = _number("cmd_vel", "yaw_rate", yaw_rate)
+    fvx = finite_number("cmd_vel", "vx", vx)
+    fvy = finite_number("cmd_vel", "vy", vy)
+    fvz = finite_number("cmd_vel", "vz", vz)
+    frate = finite_number("cmd_vel", "yaw_rate", yaw_rate)
     speed = math.hypot(fvx, fvy)
     if speed > MAX_SPEED_XY:
         fvx *= MAX_SPEED_XY / speed

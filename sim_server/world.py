@@ -22,23 +22,23 @@ from __future__ import annotations
 import math
 import random
 from dataclasses import dataclass, field
-from types import TracebackType
 
 import pybullet as p
 
 from sim_server.airframe import IRIS, Airframe
 from sim_server.boxes import sample_boxes
+from sim_server.bullet import BulletWorld
 from sim_server.commands import CommandArbiter, ControlMode, InvalidCommand
 from sim_server.controller import CascadedController
 from sim_server.limits import (
     DEFAULT_BOXES,
-    GRAVITY_M_S2,
     MAX_BOXES,
     ON_GROUND_Z_M,
     PHYSICS_DT_S,
     START_XY_M,
 )
 from sim_server.scene import BOX_COLOURS, create_box, create_drone, create_ground
+from sim_server.settings import draw_seed
 
 __all__ = ["DroneState", "InvalidCommand", "World", "WorldConfig", "yaw_of"]
 
@@ -79,22 +79,15 @@ class DroneState:
     """Altitude at or below ON_GROUND_Z_M."""
 
 
-def draw_seed() -> int:
-    """A random 32-bit world seed (a world built without one draws one)."""
-    return random.SystemRandom().getrandbits(32)
-
-
-class World:
+class World(BulletWorld):
     """A headless PyBullet world with one quadrotor and ``config.boxes`` boxes."""
 
     def __init__(self, config: WorldConfig | None = None) -> None:
+        super().__init__()
         self.config = config or WorldConfig()
         seed = self.config.seed
         self.seed: int = draw_seed() if seed is None else seed
         self._rng = random.Random(self.seed)
-        self._steps = 0
-        self._closed = False
-        self._client = p.connect(p.DIRECT)
         airframe = self.config.airframe
         self._start: Vector3 = (START_XY_M[0], START_XY_M[1], airframe.rest_z_m)
         self._controller = CascadedController(airframe)
@@ -112,29 +105,6 @@ class World:
         drop the next set of boxes of this seed's sequence. The clock keeps running."""
         self._check_open()
         self._build()
-
-    def close(self) -> None:
-        """Disconnect the PyBullet client. Idempotent."""
-        if not self._closed:
-            self._closed = True
-            p.disconnect(physicsClientId=self._client)
-
-    def __enter__(self) -> World:
-        return self
-
-    def __exit__(
-        self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        tb: TracebackType | None,
-    ) -> None:
-        self.close()
-
-    @property
-    def client(self) -> int:
-        """The PyBullet physics client id of this world (for rendering)."""
-        self._check_open()
-        return self._client
 
     # -- inputs --------------------------------------------------------------------------------
 
@@ -158,16 +128,6 @@ class World:
         return self._arbiter.set_cmd_vel(self.time_s, vx, vy, vz, yaw_rate)
 
     # -- stepping ------------------------------------------------------------------------------
-
-    @property
-    def time_s(self) -> float:
-        """Sim time: 1/240 s per physics step since the world was created."""
-        return self._steps * PHYSICS_DT_S
-
-    @property
-    def steps(self) -> int:
-        """Physics steps taken since the world was created."""
-        return self._steps
 
     def step(self, n: int = 1) -> None:
         """Advance the world by ``n`` physics steps of 1/240 s."""
@@ -262,17 +222,9 @@ class World:
 
     # -- internals -----------------------------------------------------------------------------
 
-    def _check_open(self) -> None:
-        if self._closed:
-            raise RuntimeError("this World is closed; create a new World to keep simulating")
-
     def _build(self) -> None:
-        # A full rebuild, so the world after a reset is exactly a fresh world whose random
-        # sequence has moved on: no contact caches or solver state survive.
-        client = self._client
-        p.resetSimulation(physicsClientId=client)
-        p.setGravity(0.0, 0.0, -GRAVITY_M_S2, physicsClientId=client)
-        p.setTimeStep(PHYSICS_DT_S, physicsClientId=client)
+        # A fresh world whose random sequence has moved on.
+        client = self._fresh_simulation()
         create_ground(client)
         self._drone = create_drone(client, self.config.airframe, self._start)
         spawns = sample_boxes(self._rng, self.config.boxes)

@@ -1,12 +1,14 @@
 """Simulator speed: the real-time factor of the simulator node at ``--speed max`` against a bare
-PyBullet loop of the same scene (1 drone + N boxes).
+PyBullet loop of the same scene (1 drone + N boxes; or the robot world's room with its laser).
 
-The node is the real one (``skydeck run sim --speed max``), registered with a core and
-publishing at its stated rates (pose and clock 60 Hz of sim time, boxes 10 Hz, state 5 Hz).
-RTF = sim-time advance / wall time, read from the node's ``/clock`` (GET, the latest message)
-at both ends of a window after the boxes have landed: once with nobody subscribed, once with a
-subscriber node reading ``/drone/pose``. The reference is :func:`sim_server.speed.measure`'s
-bare ``stepSimulation`` loop, in its own process.
+The node is the real one (``skydeck run sim --speed max``, ``--world robot`` for the robot
+world), registered with a core and publishing at its stated rates (drone: pose and clock 60 Hz
+of sim time, boxes 10 Hz, state 5 Hz; robot: odom, bump, tf and clock 30 Hz, scan 5 Hz, truth
+10 Hz). RTF = sim-time advance / wall time, read from the node's ``/clock`` (GET, the latest
+message) at both ends of a window after the world has settled: once with nobody subscribed,
+once with a subscriber node reading ``/drone/pose`` (drone) or ``/scan`` (robot). The references
+are :func:`sim_server.speed.measure`'s bare ``stepSimulation`` loop and
+:func:`sim_server.robot.speed.measure`'s bare loop casting the same rays, each in its own process.
 """
 
 from __future__ import annotations
@@ -21,7 +23,13 @@ from services.bench.processes import BenchError, Worker, free_port, wait_http, w
 from services.bench.topics import CoreHolder
 from sim_server.limits import PHYSICS_HZ
 
-__all__ = ["measure_bare", "measure_node"]
+__all__ = ["measure_bare", "measure_node", "measure_robot_bare"]
+
+# What the subscriber reads in each world: (topic, type).
+_WATCHED = {
+    "drone": ("/drone/pose", "geometry_msgs/msg/PoseStamped"),
+    "robot": ("/scan", "sensor_msgs/msg/LaserScan"),
+}
 
 _SETTLE_S = 0.5  # wall seconds: at tens of times real time the boxes have long landed
 
@@ -36,13 +44,30 @@ def measure_bare(*, boxes: int, steps: int, seed: int = 1) -> dict[str, float]:
     }
 
 
-def measure_node(core: CoreHolder, *, boxes: int, window_s: float, subscriber: bool = True, seed: int = 1) -> dict[str, Any]:
-    """RTF of the simulator node at speed max, without and (optionally) with a pose subscriber."""
+def measure_robot_bare(*, steps: int, seed: int = 1) -> dict[str, float]:
+    """RTF of the robot world's bare loop (with the same rays) and of the world without the
+    node, and each one's milliseconds per scan, in a worker process."""
+    with Worker("robot-bare", "services.bench.robot_worker", "--steps", str(steps), "--seed", str(seed)) as worker:
+        reading = worker.expect("RESULT", 120.0)
+    return {
+        "bare_rtf": reading["bare_steps_per_s"] / PHYSICS_HZ,
+        "world_rtf": reading["world_steps_per_s"] / PHYSICS_HZ,
+        "scan_ms": reading["scan_ms"],
+        "bare_scan_ms": reading["bare_scan_ms"],
+    }
+
+
+def measure_node(
+    core: CoreHolder, *, boxes: int = 8, window_s: float, subscriber: bool = True, seed: int = 1, world: str = "drone"
+) -> dict[str, Any]:
+    """RTF of the simulator node at speed max, without and (optionally) with a subscriber of its
+    main stream (the drone's pose, the robot's scan)."""
     env = worker_env(core.get())
     port = free_port()
+    world_args = ["--boxes", str(boxes)] if world == "drone" else ["--world", world]
     argv = [
         sys.executable, "-m", "services.cli", "run", "sim", "--port", str(port), "--log-level", "warning",
-        "--speed", "max", "--seed", str(seed), "--boxes", str(boxes),
+        "--speed", "max", "--seed", str(seed), *world_args,
     ]  # fmt: skip
     url = f"http://127.0.0.1:{port}"
     with Worker("sim-node", argv=argv, env=env) as sim, httpx.Client(timeout=5.0) as client:
@@ -51,8 +76,9 @@ def measure_node(core: CoreHolder, *, boxes: int, window_s: float, subscriber: b
         time.sleep(_SETTLE_S)
         result: dict[str, Any] = {"rtf_alone": _rtf(client, url, window_s)}
         if subscriber:
+            topic, type_name = _WATCHED[world]
             with Worker(
-                "sim-pose-sub", "services.bench.topic_skydeck", "sub", "--topic", "/drone/pose", "--warmup", "0", env=env
+                "sim-sub", "services.bench.topic_skydeck", "sub", "--topic", topic, "--type", type_name, "--warmup", "0", env=env
             ) as sub:
                 sub.expect("READY", 30.0)
                 time.sleep(_SETTLE_S)  # the link is up within a fraction of a second
@@ -60,8 +86,8 @@ def measure_node(core: CoreHolder, *, boxes: int, window_s: float, subscriber: b
                 sub.send("stop")
                 received = sub.expect("RESULT", 10.0)
             if received["received"] == 0:
-                raise BenchError("the /drone/pose subscriber received nothing from the simulator")
-            result["pose_rate"] = received["rate"]
+                raise BenchError(f"the {topic} subscriber received nothing from the simulator")
+            result["stream_rate"] = received["rate"]
     return result
 
 

@@ -59,6 +59,7 @@ def topic_arguments(description: str) -> argparse.ArgumentParser:
     parser.add_argument("--size", type=int, default=None, help="pad the JSON to this many bytes")
     parser.add_argument("--port", type=int, default=0)
     parser.add_argument("--topic", default="/bench/pose", help="Skydeck subscriber: topic to read")
+    parser.add_argument("--type", default="geometry_msgs/msg/PoseStamped", help="Skydeck subscriber: its type")
     parser.add_argument("--subscribers", type=int, default=1, help="publisher waits for this many")
     return parser
 

@@ -86,6 +86,7 @@ class Suite:
             self._fanout(),
             self._services(),
             self._sim(),
+            self._robot(),
             self._mission(),
             self._flight(),
             self._startup(),
@@ -281,6 +282,38 @@ class Suite:
 
         return Family("sim", trials, s.sim_repetitions, summarise,
                       rows=("sim_rtf", "sim_rtf_no_subscriber", "sim_world_rtf"))  # fmt: skip
+
+    def _robot(self) -> Family:
+        from services.bench.sim import measure_node, measure_robot_bare
+
+        s = self.settings
+        trials = [
+            Trial("node", "robot world node, speed max",
+                  lambda: measure_node(self.core, world="robot", window_s=s.sim_window_s)),
+            Trial("bare", "bare PyBullet loop with the same rays", lambda: measure_robot_bare(steps=s.sim_bare_steps)),
+        ]  # fmt: skip
+
+        def summarise(readings: Readings) -> list[Result]:
+            bare = median_of(readings["bare"], "bare_rtf")
+            node = readings["node"]
+            reference = "bare PyBullet loop, same scene and rays"
+            rtf = Result("robot_rtf", median_of(node, "rtf_subscribed"), "x real time", reference, bare,
+                         target=">= 50x real time and >= 0.6x bare", samples=[r["rtf_subscribed"] for r in node],
+                         detail={"with": "a subscriber node on /scan", "scan_messages_per_s": median_of(node, "stream_rate")})  # fmt: skip
+            rtf.met = rtf.ratio is not None and rtf.ratio >= 0.6 and (rtf.value or 0) >= 50
+            alone = Result("robot_rtf_no_subscriber", median_of(node, "rtf_alone"), "x real time", reference, bare,
+                           target="-", samples=[r["rtf_alone"] for r in node])  # fmt: skip
+            world = Result("robot_world_rtf", median_of(readings["bare"], "world_rtf"), "x real time", reference, bare,
+                           target="- (RobotWorld class, no node, driving and scanning)",
+                           samples=[r["world_rtf"] for r in readings["bare"]])  # fmt: skip
+            scan = Result("robot_scan_ms", median_of(readings["bare"], "scan_ms"), "ms a scan",
+                          "one bare rayTestBatch of the same 360 rays", median_of(readings["bare"], "bare_scan_ms"),
+                          target="- (360 beams, one batched ray test, 5 Hz of sim time)",
+                          samples=[r["scan_ms"] for r in readings["bare"]])  # fmt: skip
+            return [rtf, alone, world, scan]
+
+        return Family("robot", trials, s.sim_repetitions, summarise,
+                      rows=("robot_rtf", "robot_rtf_no_subscriber", "robot_world_rtf", "robot_scan_ms"))  # fmt: skip
 
     def _rtf_by_boxes(self) -> Family:
         from services.bench.sim import measure_bare, measure_node

@@ -1,4 +1,5 @@
-"""Worker: a Skydeck publisher or subscriber node of PoseStamped on /bench/pose.
+"""Worker: a Skydeck publisher or subscriber node of PoseStamped on /bench/pose (the subscriber
+reads any topic and type given with ``--topic`` and ``--type``).
 
     python -m services.bench.topic_skydeck sub --mode latency      # READY, then RESULT on `stop`
     python -m services.bench.topic_skydeck pub --mode latency --rate 1000 --duration 2
@@ -17,11 +18,13 @@ import asyncio
 import inspect
 import time
 from collections.abc import Callable
+from typing import Any
 
 from services.bench.payload import BURST, TOPIC, pose_message, stamp_now
 from services.bench.sink import Sink, emit, topic_arguments, wait_for_stop_async
 from services.runtime import Node, NodeSettings
 from services.runtime.executor import run
+from shared_models import Message, get_interface
 from shared_models.geometry_msgs import PoseStamped
 
 _QUEUE = 100
@@ -89,15 +92,18 @@ async def subscriber(args: argparse.Namespace) -> None:
     sink = Sink(args.mode, args.warmup)
     if args.mode == "latency":
 
-        def on_pose(msg: PoseStamped) -> None:
+        def on_message(msg: Any) -> None:
             sink.arrive(msg.header.stamp.sec, msg.header.stamp.nanosec)
 
     else:
 
-        def on_pose(msg: PoseStamped) -> None:
+        def on_message(msg: Any) -> None:
             sink.arrive()
 
-    node.create_subscription(PoseStamped, args.topic, on_pose, _QUEUE)
+    msg_type = get_interface(args.type)
+    if not (isinstance(msg_type, type) and issubclass(msg_type, Message)):
+        raise SystemExit(f"--type {args.type} is a service, not a message")
+    node.create_subscription(msg_type, args.topic, on_message, _QUEUE)
     await node.start()
     try:
         emit("READY", {"url": node.url})

@@ -12,11 +12,14 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
         "launch",
         help="start the core, the simulator and the nodes of a launch file (default: the workshop)",
     )
-    p.add_argument("file", nargs="?", help="a YAML launch file (default: the workshop system)")
+    p.add_argument(
+        "file", nargs="?", help="a YAML launch file, or a shipped one by name: workshop (the default), robot"
+    )
     p.add_argument("--base-port", type=int, default=8000, help="core on N, sim N+1, perception N+2, ... (default 8000)")
     p.add_argument("--speed", default="1", help="simulator speed: times real time, or 'max' (default 1)")
     p.add_argument("--seed", type=int, help="world seed (default: a random one, printed)")
-    p.add_argument("--boxes", type=int, help="number of boxes (default 8)")
+    p.add_argument("--boxes", type=int, help="drone world: number of boxes (default 8)")
+    p.add_argument("--robots", type=int, help="robot world: number of robots, each in its namespace (default 1)")
     p.add_argument("--exclude", default="", help="nodes to leave out, comma-separated (e.g. perception,ai)")
     p.set_defaults(func=_launch)
 
@@ -31,5 +34,6 @@ def _launch(args: argparse.Namespace) -> int:
         seed=args.seed,
         boxes=args.boxes,
         exclude=tuple(name.strip() for name in args.exclude.split(",") if name.strip()),
+        robots=args.robots,
     )
     return run_launch(args.file, options)  # a LaunchError is printed as one line by main

@@ -21,13 +21,13 @@ def add_parsers(subparsers: argparse._SubParsersAction[argparse.ArgumentParser])
 
     run = subparsers.add_parser(
         "run",
-        help="run one node: a built-in (sim, perception, control, ai) or a .py file (like rosrun)",
+        help=f"run one node: a built-in ({', '.join(BUILTIN_NODES)}) or a .py file (like rosrun)",
         description=(
             "Flags after NODE that `run` does not know are passed to the node (e.g. sim's --seed). "
             "`--ros-args -p NAME:=VALUE --params-file FILE.yaml` set the node's parameters, as in ROS 2."
         ),
     )
-    run.add_argument("node", help="sim | perception | control | ai | path/to/node.py")
+    run.add_argument("node", help=f"{' | '.join(BUILTIN_NODES)} | path/to/node.py")
     _add_server_flags(run, default_port=None)
     run.add_argument("--core-url", help="where the core is (default: SKYDECK_CORE_URL or http://127.0.0.1:8000)")
     run.add_argument("--use-sim-time", action="store_true", help="follow /clock instead of the wall clock")

@@ -44,6 +44,7 @@ RegistryDep = Annotated[Registry, Depends(_registry)]
 async def config() -> dict[str, Any]:
     """What clients must agree on: close codes, stream limits, and each world's arena."""
     from sim_server import limits  # constants only: no PyBullet
+    from sim_server.robot import limits as room
 
     return {
         **wire_description(),
@@ -53,6 +54,18 @@ async def config() -> dict[str, Any]:
                 "fly_half_size_m": limits.FLY_HALF_SIZE_M,
                 "box_size_m": limits.BOX_SIZE_M,
                 "start_xy_m": list(limits.START_XY_M),
+            },
+            "robot": {
+                "room_half_size_m": room.ROOM_HALF_SIZE_M,
+                "wall_thickness_m": room.WALL_THICKNESS_M,
+                "robot_radius_m": room.ROBOT_RADIUS_M,
+                "wheel_separation_m": room.WHEEL_SEPARATION_M,
+                "leg_radius_m": room.LEG_RADIUS_M,
+                "leg_spacing_m": room.LEG_SPACING_M,
+                "max_linear_speed": room.MAX_LINEAR_SPEED,
+                "max_angular_speed": room.MAX_ANGULAR_SPEED,
+                "range_max_m": room.RANGE_MAX_M,
+                "starts_xy_m": [list(start) for start in room.ROBOT_STARTS_M],
             },
         },
     }

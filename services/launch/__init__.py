@@ -22,7 +22,9 @@ from services.launch.spec import (
     LaunchSpec,
     NodeSpec,
     default_launch_file,
+    find_launch_file,
     load_launch_file,
+    shipped_launch_files,
 )
 from services.launch.supervisor import CommandFor, NodeState, NodeStatus, Supervisor, run_launch
 
@@ -43,7 +45,9 @@ __all__ = [
     "core_url",
     "default_command",
     "default_launch_file",
+    "find_launch_file",
     "load_launch_file",
     "plan_launch",
     "run_launch",
+    "shipped_launch_files",
 ]

@@ -11,6 +11,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import random
 import sys
@@ -18,6 +19,7 @@ from dataclasses import dataclass, field
 
 from services.launch.errors import LaunchError
 from services.launch.spec import LaunchSpec, NodeSpec
+from sim_server.robot.limits import MAX_ROBOTS  # constants only: no PyBullet
 
 __all__ = [
     "DEFAULT_BASE_PORT",
@@ -33,17 +35,23 @@ _MAX_SEED = 2**32 - 1
 # The simulator's default (sim_server.limits.DEFAULT_BOXES, pinned by a test): importing
 # sim_server would load PyBullet into the launcher, which never simulates anything.
 DEFAULT_BOXES = 8
+_WHERE_USED = {
+    "boxes": "--boxes is the drone world's (`skydeck launch`)",
+    "robots": "--robots is the robot world's (`skydeck launch robot`)",
+}
 
 
 @dataclass(frozen=True)
 class LaunchOptions:
-    """The options of ``skydeck launch``; ``None`` means the default (a drawn seed, 8 boxes)."""
+    """The options of ``skydeck launch``; ``None`` means the default (a drawn seed, 8 boxes,
+    1 robot)."""
 
     base_port: int = DEFAULT_BASE_PORT
     speed: str = "1"
     seed: int | None = None
     boxes: int | None = None
     exclude: tuple[str, ...] = ()
+    robots: int | None = None
 
     def __post_init__(self) -> None:
         if not 1 <= self.base_port <= 65535:
@@ -59,24 +67,22 @@ class LaunchOptions:
             raise LaunchError(f"--seed must be 0-{_MAX_SEED}, got {self.seed}")
         if self.boxes is not None and self.boxes < 0:
             raise LaunchError(f"--boxes must be 0 or more, got {self.boxes}")
+        if self.robots is not None and not 1 <= self.robots <= MAX_ROBOTS:
+            raise LaunchError(f"--robots must be 1-{MAX_ROBOTS}, got {self.robots}")
 
     def with_seed(self) -> LaunchOptions:
         """These options with a seed drawn at random if none was given, so a run can be repeated."""
         if self.seed is not None:
             return self
-        return LaunchOptions(
-            base_port=self.base_port,
-            speed=self.speed,
-            seed=random.SystemRandom().randrange(_MAX_SEED + 1),
-            boxes=self.boxes,
-            exclude=self.exclude,
-        )
+        return dataclasses.replace(self, seed=random.SystemRandom().randrange(_MAX_SEED + 1))
 
     def placeholders(self) -> dict[str, str]:
-        """The values of ``{speed}``, ``{boxes}``, ``{base_port}`` and (once set) ``{seed}``."""
+        """The values of ``{speed}``, ``{boxes}``, ``{robots}``, ``{base_port}`` and (once set)
+        ``{seed}``."""
         values = {
             "speed": self.speed,
             "boxes": str(DEFAULT_BOXES if self.boxes is None else self.boxes),
+            "robots": str(1 if self.robots is None else self.robots),
             "base_port": str(self.base_port),
         }
         if self.seed is not None:
@@ -107,8 +113,15 @@ def plan_launch(spec: LaunchSpec, options: LaunchOptions) -> tuple[NodePlan, ...
     """The processes to start, in start order: the core first, then the rest as listed.
 
     Raises ``LaunchError`` for an ``exclude`` name the launch file does not have, a port past
-    65535, or ``{seed}`` in the file with no seed in the options (see ``with_seed``).
+    65535, ``{seed}`` in the file with no seed in the options (see ``with_seed``), or ``--boxes``
+    or ``--robots`` given to a launch file that has no use for them.
     """
+    for option, value in (("boxes", options.boxes), ("robots", options.robots)):
+        if value is not None and not spec.uses(option):
+            raise LaunchError(
+                f"--{option} {value}: this launch file does not use it (no {{{option}}} in its "
+                f"nodes); {_WHERE_USED[option]}"
+            )
     unknown = [name for name in options.exclude if name not in spec.names]
     if unknown:
         raise LaunchError(

@@ -11,8 +11,8 @@
         args: ["--speed", "{speed}", "--seed", "{seed}", "--boxes", "{boxes}"]
 
 Each node listens on ``base_port + port_offset``. Arguments and environment values may use the
-placeholders ``{speed}``, ``{seed}``, ``{boxes}`` and ``{base_port}``, filled from the launch
-options (``{{`` is a literal brace). ``load_launch_file`` turns every problem into one
+placeholders ``{speed}``, ``{seed}``, ``{boxes}``, ``{robots}`` and ``{base_port}``, filled
+from the launch options (``{{`` is a literal brace). ``load_launch_file`` turns every problem into one
 ``LaunchFileError`` line that names the file and the place, e.g.
 ``launch.yaml: nodes[2].port_offset: Input should be greater than or equal to 0``.
 """
@@ -44,13 +44,15 @@ __all__ = [
     "LaunchSpec",
     "NodeSpec",
     "default_launch_file",
+    "find_launch_file",
     "load_launch_file",
+    "shipped_launch_files",
 ]
 
 CORE_RUN = "core"
 BUILTIN_RUNS = (CORE_RUN, *BUILTIN_NODES)
 """What ``run`` may name besides a path to a .py file."""
-PLACEHOLDERS = ("speed", "seed", "boxes", "base_port")
+PLACEHOLDERS = ("speed", "seed", "boxes", "robots", "base_port")
 """The ``{name}`` placeholders that arguments and environment values may use."""
 
 # A node's name prefixes its output lines and is used by --exclude, so it stays one plain token.
@@ -163,10 +165,45 @@ class LaunchSpec(BaseModel):
         """The node names in the order listed."""
         return tuple(node.name for node in self.nodes)
 
+    def uses(self, placeholder: str) -> bool:
+        """Whether any node's arguments or environment use ``{placeholder}``."""
+        return any(
+            field == placeholder
+            for node in self.nodes
+            for text in (*node.args, *node.env.values())
+            for _literal, field, _spec, _conversion in string.Formatter().parse(text)
+        )
+
 
 def default_launch_file() -> Path:
     """The workshop system's launch file: core, sim, perception, control and ai."""
     return Path(__file__).with_name("workshop.yaml")
+
+
+def shipped_launch_files() -> dict[str, Path]:
+    """The launch files that ship with Skydeck, by name: ``workshop``, ``robot``, ..."""
+    return {path.stem: path for path in sorted(Path(__file__).parent.glob("*.yaml"))}
+
+
+def find_launch_file(name_or_path: str | Path | None) -> Path:
+    """The launch file ``skydeck launch ARG`` means: the default (the workshop) for None, a
+    shipped one for a bare name (``robot``), else the path as given.
+
+    Raises ``LaunchFileError`` for a bare name that is neither shipped nor a file here.
+    """
+    if name_or_path is None:
+        return default_launch_file()
+    path = Path(name_or_path)
+    shipped = shipped_launch_files()
+    if isinstance(name_or_path, str) and path.name == name_or_path and not path.suffix:
+        if name_or_path in shipped:
+            return shipped[name_or_path]
+        if not path.exists():
+            raise LaunchFileError(
+                path,
+                f"no such launch file, and no shipped launch of that name (shipped: {', '.join(shipped)})",
+            )
+    return path
 
 
 def load_launch_file(path: str | Path) -> LaunchSpec:

@@ -29,7 +29,7 @@ from typing import TextIO
 from services.launch.child_process import ChildProcess, Health, describe_exit, signal_group, spawn
 from services.launch.errors import LaunchError
 from services.launch.plan import LaunchOptions, NodePlan, core_url, default_command, plan_launch
-from services.launch.spec import LaunchSpec, default_launch_file, load_launch_file
+from services.launch.spec import LaunchSpec, find_launch_file, load_launch_file
 from services.runtime.http_client import HttpClient
 from services.runtime.ports import port_is_free
 
@@ -452,9 +452,10 @@ def run_launch(
     *,
     out: TextIO | None = None,
 ) -> int:
-    """``skydeck launch``: load the launch file (default: the workshop's) and run it until stopped.
+    """``skydeck launch``: load the launch file (default: the workshop's; a bare name such as
+    ``robot`` names a shipped one) and run it until stopped.
 
     Raises ``LaunchError`` (``LaunchFileError`` for the file) with one line to show the user.
     """
-    spec = load_launch_file(default_launch_file() if path is None else path)
+    spec = load_launch_file(find_launch_file(path))
     return asyncio.run(Supervisor(spec, options, out=out).run())

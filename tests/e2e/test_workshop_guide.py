@@ -17,37 +17,24 @@ from pathlib import Path
 
 import pytest
 
+from tests.e2e.guide import code_blocks, skydeck_commands
+
 pytestmark = [pytest.mark.e2e, pytest.mark.timeout(240)]
 
 ROOT = Path(__file__).resolve().parents[2]
 GUIDE = ROOT / "docs" / "workshop.md"
-_BLOCK = re.compile(r"```(\w+)\n(.*?)```", re.S)
-
-
-def _blocks(language: str) -> list[str]:
-    return [body for lang, body in _BLOCK.findall(GUIDE.read_text()) if lang == language]
 
 
 def test_python_in_the_guide_is_the_shipped_files() -> None:
     shipped = {path.read_text() for path in (ROOT / "examples" / "workshop").glob("*.py")}
-    blocks = _blocks("python")
+    blocks = code_blocks(GUIDE, "python")
     assert len(blocks) == len(shipped) == 2
     for block in blocks:
         assert block in shipped, block.splitlines()[0]
 
 
-def _commands() -> list[list[str]]:
-    commands = []
-    for block in _blocks("sh"):
-        for line in block.splitlines():
-            line = line.split("#", 1)[0].strip()
-            if line.startswith("skydeck "):
-                commands.append(shlex.split(line)[1:])
-    return commands
-
-
 async def test_every_command_in_the_guide_runs(launch) -> None:
-    commands = _commands()
+    commands = skydeck_commands(GUIDE)
     assert any(c[0] == "launch" for c in commands) and any(c[0] == "run" for c in commands)
     system = None
     background: list[asyncio.subprocess.Process] = []

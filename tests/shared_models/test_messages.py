@@ -88,7 +88,7 @@ ROS_FIELDS: dict[str, list[str]] = {
         "tour_length",
     ],
     "ros_workshop/msg/ControlState": ["header", "state", "setpoint", "message"],
-    "ros_workshop/msg/SimWorld": ["header", "id", "seed", "build", "boxes"],
+    "ros_workshop/msg/SimWorld": ["header", "id", "seed", "build", "boxes", "world", "namespaces"],
     # std_msgs
     "std_msgs/msg/ColorRGBA": ["r", "g", "b", "a"],
     "std_msgs/msg/Float32": ["data"],

@@ -164,9 +164,11 @@ def test_public_api() -> None:
             "core_url",
             "default_command",
             "default_launch_file",
+            "find_launch_file",
             "load_launch_file",
             "plan_launch",
             "run_launch",
+            "shipped_launch_files",
         ]
     )
     for name in services.launch.__all__:

@@ -294,7 +294,7 @@ def test_reserved_name(tmp_path: Path) -> None:
 def test_unknown_run(tmp_path: Path) -> None:
     path = _write(tmp_path, "nodes:\n  - {name: sim, run: simulator, port_offset: 1}\n")
     assert _problem(path).startswith(
-        "nodes[0].run: 'simulator' is neither a built-in (core, sim, perception, control, ai)"
+        "nodes[0].run: 'simulator' is neither a built-in (core, sim, perception, control, ai, teleop,"
     )
 
 

@@ -13,6 +13,7 @@ import { LayersPanel } from "./layers_panel.js";
 import { MapView } from "./map.js";
 import { ParametersPanel } from "./parameters.js";
 import { Plots } from "./plots.js";
+import { Room, topicIn } from "./room.js";
 import { StatusBanner } from "./status.js";
 import { Tabs } from "./tabs.js";
 import { Teleop } from "./teleop.js";
@@ -21,6 +22,7 @@ import { World } from "./world.js";
 const $ = (id) => document.getElementById(id);
 
 const world = new World();
+const room = new Room(); // the robot world's state, started when /simulator/world says so
 const graph = new GraphPoller();
 const layers = new Layers();
 const tabs = new Tabs(document.querySelector(".tabs"));
@@ -30,16 +32,20 @@ const commands = new Commands({
   result: $("command-result"),
 });
 commands.addEventListener("answer", (event) => {
-  if (event.detail.service === "/simulator/reset" && event.detail.kind === "success") world.clearTrack();
+  if (event.detail.service === "/simulator/reset" && event.detail.kind === "success") {
+    world.clearTrack();
+    room.clearTrails();
+  }
 });
 
 const map = new MapView($("map"), {
   world,
+  room,
   layers,
   follow: $("map-follow"),
   cursorLabel: $("map-cursor"),
   onClick: (x, y) => {
-    if (!$("click-to-fly").checked) return;
+    if (world.kind === "robot" || !$("click-to-fly").checked) return;
     world.flyTarget = { x, y };
     commands.fly(x, y);
   },
@@ -118,6 +124,7 @@ const teleop = new Teleop({
   speedLabel: $("teleop-speed-value"),
   keysView: $("teleop-keys"),
   note: $("teleop-note"),
+  topicLabel: $("teleop-topic"),
 });
 const camera = new CameraView({ toggle: $("camera-toggle"), figure: $("camera-view"), image: $("camera-image"), caption: $("camera-caption") });
 const log = new LogConsole({
@@ -128,7 +135,7 @@ const log = new LogConsole({
   clear: $("log-clear"),
   count: $("log-count"),
 });
-const status = new StatusBanner({ banner: $("status-banner"), pill: $("core-status"), summary: $("drone-summary"), graph, world });
+const status = new StatusBanner({ banner: $("status-banner"), pill: $("core-status"), summary: $("drone-summary"), graph, world, room });
 
 function renderMission() {
   const s = world.aiStatus;
@@ -149,7 +156,30 @@ graph.start();
 layers.restore();
 log.start();
 map.start();
-new Plots({ world, altitude: $("plot-altitude"), speed: $("plot-speed") }).start();
+const plots = new Plots({ world, altitude: $("plot-altitude"), speed: $("plot-speed") });
+plots.start();
+
+// The world the simulator runs decides what the map, plots, teleop and commands show.
+function applyWorld() {
+  const kind = world.kind || "drone";
+  for (const element of document.querySelectorAll("[data-world]")) element.hidden = element.dataset.world !== kind;
+  const robots = $("teleop-robot");
+  if (kind === "robot") {
+    room.start(world.namespaces);
+    plots.use(room, "robot");
+    robots.replaceChildren(...world.namespaces.map((ns) => new Option(ns === "/" ? "robot" : ns.slice(1), ns)));
+    robots.hidden = world.namespaces.length < 2;
+    teleop.setTarget("robot", topicIn(world.namespaces[0] || "/", "cmd_vel"));
+  } else {
+    room.stop();
+    plots.use(world, "drone");
+    robots.hidden = true;
+    teleop.setTarget("drone", "/drone/cmd_vel");
+  }
+  map.fit();
+}
+world.addEventListener("world", applyWorld);
+$("teleop-robot").addEventListener("change", (event) => teleop.setTarget("robot", topicIn(event.target.value, "cmd_vel")));
 status.start();
 
 const copy = (value) => (value == null ? null : structuredClone(value));
@@ -158,6 +188,25 @@ const copy = (value) => (value == null ? null : structuredClone(value));
 window.skydeck = Object.freeze({
   get pose() {
     return copy(world.pose);
+  },
+  /** Which world the simulator runs: {kind: "drone" | "robot" | null, namespaces}. */
+  get world() {
+    return { kind: world.kind, namespaces: [...world.namespaces] };
+  },
+  /** The robot world: per robot its true pose, odometry, trail and scan sizes, bumper; the room. */
+  get room() {
+    return {
+      robots: room.robots.map((r) => ({
+        namespace: r.namespace,
+        pose: copy(r.pose),
+        odom: copy(r.odom),
+        trail: r.trail.length,
+        scanPoints: r.scan ? r.scan.points.length : 0,
+        bump: copy(r.bump),
+      })),
+      obstacles: copy(room.obstacles),
+      people: copy(room.people),
+    };
   },
   get track() {
     return copy(world.track);
@@ -181,7 +230,7 @@ window.skydeck = Object.freeze({
     return copy(commands.last);
   },
   get teleop() {
-    return { enabled: teleop.enabled, held: [...teleop.held], sent: teleop.sent, twist: teleop.twist() };
+    return { enabled: teleop.enabled, held: [...teleop.held], sent: teleop.sent, twist: teleop.twist(), topic: teleop.topic };
   },
   get camera() {
     return { shown: !camera.figure.hidden, frames: camera.frames };

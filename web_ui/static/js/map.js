@@ -1,5 +1,6 @@
 // The live map: owns the canvas, redraws the latest state on every animation frame, pans on
-// drag, zooms on the wheel, and turns a click into a fly command.
+// drag, zooms on the wheel, and turns a click into a fly command. It draws the world the
+// simulator runs: the drone's arena, or the robot world's room (world.kind).
 
 import { config } from "./config.js";
 import { View } from "./geometry.js";
@@ -11,21 +12,28 @@ import {
   drawDrone,
   drawGrid,
   drawLayer,
+  drawObstacles,
+  drawPeople,
+  drawRobot,
+  drawRoom,
   drawScaleBar,
+  drawScan,
   drawTour,
   drawTrack,
 } from "./map_draw.js";
 
 const CLICK_SLOP_PX = 4;
 const ARENA = config.worlds.drone; // the core's numbers, not a copy
+const ROOM = config.worlds.robot;
 const STALE_POSE_S = 2;
 
 export class MapView {
   /** `onClick(x, y)` receives map coordinates of a click (not a drag). */
-  constructor(canvas, { world, layers, onClick, follow, cursorLabel }) {
+  constructor(canvas, { world, room, layers, onClick, follow, cursorLabel }) {
     this.canvas = canvas;
     this.ctx = canvas.getContext("2d");
     this.world = world;
+    this.room = room;
     this.layers = layers;
     this.onClick = onClick;
     this.follow = follow;
@@ -48,7 +56,8 @@ export class MapView {
   }
 
   fit() {
-    this.view.fit(ARENA.fly_half_size_m);
+    // The room with half a metre to spare, so the legend over the map's top hides no wall.
+    this.view.fit(this.world.kind === "robot" ? ROOM.room_half_size_m + ROOM.wall_thickness_m + 0.5 : ARENA.fly_half_size_m);
   }
 
   /** Page (client) coordinates of a map point: where a test or a user would click. */
@@ -66,7 +75,8 @@ export class MapView {
 
   draw() {
     const { ctx, view, world } = this;
-    const pose = world.pose;
+    const robot = world.kind === "robot";
+    const pose = robot ? this.room.robots[0] && this.room.robots[0].pose : world.pose;
     if (this.follow.checked && pose) {
       view.cx = pose.x;
       view.cy = pose.y;
@@ -76,19 +86,41 @@ export class MapView {
     ctx.fillStyle = COLORS.background;
     ctx.fillRect(0, 0, view.width, view.height);
     drawGrid(ctx, view);
+    if (robot) this._drawRoom();
+    else this._drawArena(pose);
+    for (const layer of this.layers.list()) drawLayer(ctx, view, layer);
+    drawScaleBar(ctx, view);
+    this.frames += 1;
+  }
+
+  /** The robot world: walls, obstacles, the person; per robot its odometry trail, scan, body. */
+  _drawRoom() {
+    const { ctx, view, room } = this;
+    drawRoom(ctx, view, ROOM.room_half_size_m, ROOM.wall_thickness_m);
+    drawObstacles(ctx, view, room.obstacles);
+    drawPeople(ctx, view, room.people, ROOM.leg_radius_m, ROOM.leg_spacing_m);
+    const stale = room.odomAgeSeconds() > STALE_POSE_S;
+    for (const robot of room.robots) {
+      drawTrack(ctx, view, robot.trail.map((p) => room.odomToMap(robot, p)), COLORS.odomTrail);
+      if (!robot.pose) continue;
+      if (robot.scan) drawScan(ctx, view, robot.pose, robot.scan.points);
+      drawRobot(ctx, view, robot.pose, ROOM.robot_radius_m, robot.label, robot.bump, stale);
+    }
+  }
+
+  /** The drone world: the fly area, boxes, the AI's tour, the track, setpoint and the drone. */
+  _drawArena(pose) {
+    const { ctx, view, world } = this;
     drawArena(ctx, view, ARENA.fly_half_size_m);
     drawBoxes(ctx, view, ARENA.box_size_m, world.simBoxes, world.perceptionBoxes, world.aiStatus);
     drawTour(ctx, view, pose, world.perceptionBoxes, world.aiStatus);
     drawTrack(ctx, view, world.track);
-    for (const layer of this.layers.list()) drawLayer(ctx, view, layer);
     const control = world.controlState;
     if (control && control.setpoint && control.state !== "landed") {
       drawCross(ctx, view, control.setpoint, COLORS.setpoint, "setpoint", "above");
     }
     if (world.flyTarget) drawCross(ctx, view, world.flyTarget, COLORS.flyTarget, "clicked", "below");
     if (pose) drawDrone(ctx, view, pose, world.poseAgeSeconds() > STALE_POSE_S);
-    drawScaleBar(ctx, view);
-    this.frames += 1;
   }
 
   _resize() {

@@ -1,4 +1,5 @@
-// Drawing the top-down map on a 2D canvas context: grid, boxes, tour, track, drone, layers.
+// Drawing the top-down map on a 2D canvas context: grid, boxes, tour, track, drone, layers; and
+// for the robot world the room, its obstacles, the person, robots, scans and odometry trails.
 // Pure functions of (ctx, view, data); map.js owns the canvas and calls them every frame.
 
 export const COLORS = {
@@ -17,6 +18,13 @@ export const COLORS = {
   setpoint: "#c678dd",
   flyTarget: "#e5e5e5",
   text: "#d7dde3",
+  wall: "#9aa7b4",
+  obstacle: "#a98552",
+  person: "#e06c75",
+  robot: "#61afef",
+  bump: "#ff5252",
+  scan: "#98c379",
+  odomTrail: "rgba(229, 192, 123, 0.75)",
 };
 
 export function drawGrid(ctx, view) {
@@ -146,9 +154,9 @@ export function drawTour(ctx, view, pose, perceptionBoxes, status) {
   ctx.restore();
 }
 
-export function drawTrack(ctx, view, track) {
+export function drawTrack(ctx, view, track, color = COLORS.track) {
   if (track.length < 2) return;
-  ctx.strokeStyle = COLORS.track;
+  ctx.strokeStyle = color;
   ctx.lineWidth = 1.5;
   ctx.beginPath();
   track.forEach((p, i) => {
@@ -259,4 +267,87 @@ function line(ctx, x0, y0, x1, y1) {
   ctx.moveTo(x0, y0);
   ctx.lineTo(x1, y1);
   ctx.stroke();
+}
+
+// -- the robot world ---------------------------------------------------------------------------
+
+/** The room's four walls, their inner faces at ±half metres, `thickness` thick. */
+export function drawRoom(ctx, view, half, thickness) {
+  const [x0, y0] = view.toScreen(-half - thickness, half + thickness);
+  const [x1, y1] = view.toScreen(half + thickness, -half - thickness);
+  const t = thickness * view.scale;
+  ctx.fillStyle = COLORS.wall;
+  ctx.fillRect(x0, y0, x1 - x0, t);
+  ctx.fillRect(x0, y1 - t, x1 - x0, t);
+  ctx.fillRect(x0, y0, t, y1 - y0);
+  ctx.fillRect(x1 - t, y0, t, y1 - y0);
+}
+
+/** Box obstacles: {x, y, yaw, sx, sy} in metres. */
+export function drawObstacles(ctx, view, obstacles) {
+  for (const box of obstacles) {
+    const [sx, sy] = view.toScreen(box.x, box.y);
+    const w = box.sx * view.scale;
+    const h = box.sy * view.scale;
+    ctx.save();
+    ctx.translate(sx, sy);
+    ctx.rotate(-box.yaw);
+    ctx.fillStyle = `${COLORS.obstacle}88`;
+    ctx.strokeStyle = COLORS.obstacle;
+    ctx.lineWidth = 1.5;
+    ctx.fillRect(-w / 2, -h / 2, w, h);
+    ctx.strokeRect(-w / 2, -h / 2, w, h);
+    ctx.restore();
+  }
+}
+
+/** People: two legs side by side across the way each faces. */
+export function drawPeople(ctx, view, people, legRadius, legSpacing) {
+  ctx.fillStyle = `${COLORS.person}aa`;
+  ctx.strokeStyle = COLORS.person;
+  ctx.lineWidth = 1.5;
+  for (const person of people) {
+    for (const side of [1, -1]) {
+      const x = person.x - side * (legSpacing / 2) * Math.sin(person.yaw);
+      const y = person.y + side * (legSpacing / 2) * Math.cos(person.yaw);
+      const [sx, sy] = view.toScreen(x, y);
+      ctx.beginPath();
+      ctx.arc(sx, sy, Math.max(3, legRadius * view.scale), 0, 2 * Math.PI);
+      ctx.fill();
+      ctx.stroke();
+    }
+  }
+}
+
+/** A scan's points (in the laser frame) placed at the robot's pose. */
+export function drawScan(ctx, view, pose, points) {
+  const c = Math.cos(pose.yaw);
+  const s = Math.sin(pose.yaw);
+  ctx.fillStyle = COLORS.scan;
+  for (const p of points) {
+    const [sx, sy] = view.toScreen(pose.x + c * p.x - s * p.y, pose.y + s * p.x + c * p.y);
+    ctx.fillRect(sx - 1.5, sy - 1.5, 3, 3);
+  }
+}
+
+/** A robot at its size: a disc, its heading, a label; red where the bumper is pressed. */
+export function drawRobot(ctx, view, pose, radius, label, bump, stale) {
+  const [sx, sy] = view.toScreen(pose.x, pose.y);
+  const r = Math.max(6, radius * view.scale);
+  const color = stale ? "#7d8895" : COLORS.robot;
+  const pressed = bump && (bump.left_front || bump.right_front || bump.left_side || bump.right_side);
+  ctx.fillStyle = `${color}40`;
+  ctx.strokeStyle = pressed ? COLORS.bump : color;
+  ctx.lineWidth = 2;
+  ctx.beginPath();
+  ctx.arc(sx, sy, r, 0, 2 * Math.PI);
+  ctx.fill();
+  ctx.stroke();
+  ctx.strokeStyle = color;
+  line(ctx, sx, sy, sx + Math.cos(pose.yaw) * r, sy - Math.sin(pose.yaw) * r);
+  ctx.font = "bold 11px system-ui, sans-serif";
+  ctx.fillStyle = COLORS.text;
+  ctx.textAlign = "left";
+  ctx.textBaseline = "top";
+  ctx.fillText(label, sx + r + 3, sy + 3);
 }

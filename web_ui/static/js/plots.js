@@ -1,15 +1,31 @@
-// Altitude and horizontal speed over the last 60 s, drawn on canvases a few times a second.
+// Two time series over the last 60 s, drawn on canvases a few times a second: the drone's
+// altitude and horizontal speed, or a robot's speed and turn rate (from its odometry).
 
 const WINDOW_S = 60;
 const REDRAW_MS = 200;
 
+const CHARTS = {
+  drone: [
+    { key: "z", title: "altitude", unit: "m", color: "#61afef", min: 0, max: 4 },
+    { key: "speed", title: "horizontal speed", unit: "m/s", color: "#e5c07b", min: 0, max: 2 },
+  ],
+  robot: [
+    { key: "speed", title: "speed (odom)", unit: "m/s", color: "#61afef", min: -0.4, max: 0.4 },
+    { key: "turn", title: "turn rate (odom)", unit: "rad/s", color: "#e5c07b", min: -2, max: 2 },
+  ],
+};
+
 export class Plots {
   constructor({ world, altitude, speed }) {
-    this.world = world;
-    this.charts = [
-      { canvas: altitude, key: "z", title: "altitude", unit: "m", color: "#61afef", min: 0, max: 4 },
-      { canvas: speed, key: "speed", title: "horizontal speed", unit: "m/s", color: "#e5c07b", min: 0, max: 2 },
-    ];
+    this.world = world; // anything with a `history` of samples {t, ...keys}
+    this.canvases = [altitude, speed];
+    this.use(world, "drone");
+  }
+
+  /** Plot `source.history` with the charts of world `kind` ("drone" or "robot"). */
+  use(source, kind) {
+    this.world = source;
+    this.charts = CHARTS[kind].map((chart, i) => ({ ...chart, canvas: this.canvases[i] }));
   }
 
   start() {
@@ -41,13 +57,14 @@ export class Plots {
     const values = history.map((s) => s[chart.key]);
     // The y range grows to fit the data and never shrinks below the chart's default.
     const top = niceCeil(Math.max(chart.max, ...values));
+    const bottom = chart.min < 0 ? -niceCeil(Math.max(-chart.min, ...values.map((v) => -v))) : chart.min;
     const px = (t) => pad.left + ((t - (now - WINDOW_S)) / WINDOW_S) * (w - pad.left - pad.right);
-    const py = (v) => h - pad.bottom - ((v - chart.min) / (top - chart.min)) * (h - pad.top - pad.bottom);
+    const py = (v) => h - pad.bottom - ((v - bottom) / (top - bottom)) * (h - pad.top - pad.bottom);
     ctx.font = "10px ui-monospace, monospace";
     ctx.textAlign = "right";
     ctx.textBaseline = "middle";
     for (let i = 0; i <= 4; i++) {
-      const v = chart.min + ((top - chart.min) * i) / 4;
+      const v = bottom + ((top - bottom) * i) / 4;
       ctx.strokeStyle = "#1c2630";
       ctx.beginPath();
       ctx.moveTo(pad.left, Math.round(py(v)) + 0.5);

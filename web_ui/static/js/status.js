@@ -1,16 +1,19 @@
 // Connection status: the header pill and the banner that says what is wrong and what to do
-// (core unreachable, simulator absent or not publishing).
+// (core unreachable, simulator absent or not publishing: /drone/pose, or the robot's /odom).
+
+import { topicIn } from "./room.js";
 
 const STALE_POSE_S = 2;
 const STARTUP_GRACE_MS = 3000; // sockets are still connecting: no "not publishing" yet
 
 export class StatusBanner {
-  constructor({ banner, pill, summary, graph, world }) {
+  constructor({ banner, pill, summary, graph, world, room }) {
     this.banner = banner;
     this.pill = pill;
     this.summary = summary;
     this.graph = graph;
     this.world = world;
+    this.room = room;
     this.message = "";
   }
 
@@ -33,16 +36,18 @@ export class StatusBanner {
     } else {
       const nodes = graph.graph.nodes.length;
       this._pill("ok", `core ok · ${nodes} node${nodes === 1 ? "" : "s"}`);
-      const pose = graph.graph.topics.find((t) => t.name === "/drone/pose");
-      const age = world.poseAgeSeconds();
+      const robot = world.kind === "robot" && this.room.robots.length > 0;
+      const name = robot ? topicIn(this.room.robots[0].namespace, "odom") : "/drone/pose";
+      const pose = graph.graph.topics.find((t) => t.name === name);
+      const age = robot ? this.room.odomAgeSeconds() : world.poseAgeSeconds();
       if (!pose || !pose.publishers.length) {
         state = "warn";
-        message = "Simulator not running: nothing publishes /drone/pose. Start it with `skydeck run sim` (or `make up`).";
+        message = `Simulator not running: nothing publishes ${name}. Start it with \`skydeck run sim\` (or \`make up\`; \`make robot\` for the robot world).`;
       } else if (age > STALE_POSE_S && !(age === Infinity && performance.now() < STARTUP_GRACE_MS)) {
         state = "warn";
         message = Number.isFinite(age)
-          ? `Simulator not publishing: no /drone/pose for ${age.toFixed(0)} s (${pose.publishers.join(", ")} registered).`
-          : `Simulator not publishing: no /drone/pose received yet from ${pose.publishers.join(", ")}.`;
+          ? `Simulator not publishing: no ${name} for ${age.toFixed(0)} s (${pose.publishers.join(", ")} registered).`
+          : `Simulator not publishing: no ${name} received yet from ${pose.publishers.join(", ")}.`;
       }
     }
     this._banner(state, message);
@@ -64,6 +69,10 @@ export class StatusBanner {
   }
 
   _summary() {
+    if (this.world.kind === "robot") {
+      this._robotSummary();
+      return;
+    }
     const { pose, controlState, droneState } = this.world;
     if (!pose) {
       this.summary.textContent = "no pose yet";
@@ -73,6 +82,19 @@ export class StatusBanner {
     const parts = [`x ${pose.x.toFixed(2)}  y ${pose.y.toFixed(2)}  z ${pose.z.toFixed(2)} m  yaw ${heading}°`];
     if (controlState) parts.push(`control: ${controlState.state}`);
     if (droneState && droneState.mode) parts.push(`mode: ${droneState.mode}`);
+    this.summary.textContent = parts.join("  ·  ");
+  }
+
+  _robotSummary() {
+    const robot = this.room.robots[0];
+    if (!robot || !robot.pose) {
+      this.summary.textContent = "no robot pose yet";
+      return;
+    }
+    const { pose, odom } = robot;
+    const heading = ((pose.yaw * 180) / Math.PI).toFixed(0);
+    const parts = [`${robot.label}: x ${pose.x.toFixed(2)}  y ${pose.y.toFixed(2)} m  yaw ${heading}°`];
+    if (odom) parts.push(`odom: ${odom.v.toFixed(2)} m/s  ${odom.w.toFixed(2)} rad/s`);
     this.summary.textContent = parts.join("  ·  ");
   }
 }

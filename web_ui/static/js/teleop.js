@@ -1,13 +1,24 @@
-// Keyboard teleop: publishes geometry_msgs/msg/Twist on /drone/cmd_vel at 10 Hz while keys are
-// held and one zero Twist on release. Off by default; keys typed into form fields never count.
+// Keyboard teleop: publishes geometry_msgs/msg/Twist at 10 Hz while keys are held and one zero
+// Twist on release, on /drone/cmd_vel (world frame) in the drone world and on a robot's cmd_vel
+// (body frame) in the robot world. Off by default; keys typed into form fields never count.
 
 import { TopicSocket } from "./api.js";
+import { config } from "./config.js";
 
-const TOPIC = "/drone/cmd_vel";
 const TYPE = "geometry_msgs/msg/Twist";
 const PERIOD_MS = 100;
 const YAW_RATE = 1.0; // rad/s
 const CLIMB_RATE = 1.0; // m/s
+const ROBOT_TURN_RATE = 1.0; // rad/s
+// The speed slider per world: the robot's top speed comes from the core, never a copy.
+const SPEEDS = {
+  drone: { min: 0.5, max: 8, step: 0.5, value: 2 },
+  robot: { min: 0.05, max: config.worlds.robot.max_linear_speed, step: 0.05, value: 0.2 },
+};
+const NOTES = {
+  drone: "On: WASD / arrows move (as on the map), R/F up/down, Q/E yaw, space stops. Typing in a field never drives.",
+  robot: "On: W/S or ↑/↓ drive forward / back, A/D or ←/→ (and Q/E) turn; hold two for an arc; space stops. Typing in a field never drives.",
+};
 
 // Key -> action. Directions are the map's: up is +y, right is +x (cmd_vel is world frame).
 const KEYS = {
@@ -25,9 +36,12 @@ function isTyping(target) {
 }
 
 export class Teleop {
-  constructor({ toggle, speed, speedLabel, keysView, note }) {
+  constructor({ toggle, speed, speedLabel, keysView, note, topicLabel }) {
     this.toggle = toggle;
     this.note = note;
+    this.topicLabel = topicLabel;
+    this.kind = "drone";
+    this.topic = "/drone/cmd_vel";
     this.speed = speed;
     this.speedLabel = speedLabel;
     this.keysView = keysView;
@@ -39,12 +53,29 @@ export class Teleop {
     this._moving = false;
     toggle.addEventListener("click", () => this.setEnabled(!this.enabled));
     speed.addEventListener("input", () => {
-      speedLabel.textContent = Number(speed.value).toFixed(1);
+      speedLabel.textContent = Number(speed.value).toFixed(this.kind === "robot" ? 2 : 1);
     });
     window.addEventListener("keydown", (event) => this._key(event, true));
     window.addEventListener("keyup", (event) => this._key(event, false));
     window.addEventListener("blur", () => this._releaseAll());
     document.addEventListener("visibilitychange", () => this._releaseAll());
+  }
+
+  /** Drive the drone world ("drone", /drone/cmd_vel) or a robot ("robot", its cmd_vel topic). */
+  setTarget(kind, topic) {
+    if (kind === this.kind && topic === this.topic) return;
+    const enabled = this.enabled;
+    this.setEnabled(false);
+    if (kind !== this.kind) {
+      Object.assign(this.speed, SPEEDS[kind]);
+      this.speed.value = String(SPEEDS[kind].value);
+      this.speedLabel.textContent = Number(this.speed.value).toFixed(2);
+    }
+    this.kind = kind;
+    this.topic = topic;
+    this.topicLabel.textContent = `publishes ${topic}`;
+    this.setEnabled(enabled);
+    this._showNote();
   }
 
   setEnabled(enabled) {
@@ -54,12 +85,10 @@ export class Teleop {
     this.toggle.setAttribute("aria-pressed", String(enabled));
     this.toggle.textContent = enabled ? "Teleop ON" : "Teleop off";
     this.keysView.classList.toggle("dim", !enabled);
-    this.note.textContent = enabled
-      ? "On: WASD / arrows move (as on the map), R/F up/down, Q/E yaw, space stops. Typing in a field never drives."
-      : "Off: keys do nothing. Control's setpoint stream, when active, wins over teleop.";
+    this._showNote();
     if (enabled) {
       this.toggle.blur(); // so space and arrows reach the window, not the button
-      this.socket = new TopicSocket(TOPIC, { type: TYPE, mode: "publish" }).open();
+      this.socket = new TopicSocket(this.topic, { type: TYPE, mode: "publish" }).open();
     } else if (this.socket) {
       const socket = this.socket;
       this.socket = null;
@@ -67,11 +96,24 @@ export class Teleop {
     }
   }
 
+  _showNote() {
+    this.note.textContent = this.enabled
+      ? NOTES[this.kind]
+      : this.kind === "robot"
+        ? "Off: keys do nothing. Without a command for 0.5 s the robot stops by itself."
+        : "Off: keys do nothing. Control's setpoint stream, when active, wins over teleop.";
+  }
+
   /** The Twist for the keys held now. */
   twist() {
     const v = Number(this.speed.value);
     const h = this.held;
     const axis = (plus, minus) => (h.has(plus) ? 1 : 0) - (h.has(minus) ? 1 : 0);
+    if (this.kind === "robot") {
+      // Body frame: up/down drive, left/right (and the yaw keys) turn; both held make an arc.
+      const turn = Math.max(-1, Math.min(1, axis("left", "right") + axis("ccw", "cw")));
+      return { linear: { x: axis("up", "down") * v, y: 0, z: 0 }, angular: { x: 0, y: 0, z: turn * ROBOT_TURN_RATE } };
+    }
     return {
       linear: { x: axis("right", "left") * v, y: axis("up", "down") * v, z: axis("rise", "sink") * CLIMB_RATE },
       angular: { x: 0, y: 0, z: axis("ccw", "cw") * YAW_RATE },

@@ -1,5 +1,7 @@
-// The workshop system as the dashboard knows it: the latest drone pose, its track and history,
-// the boxes, the AI's status and control's state, fed by topic sockets through the core.
+// The workshop system as the dashboard knows it: which world the simulator runs (from the latched
+// /simulator/world), and for the drone world the latest pose, its track and history, the boxes,
+// the AI's status and control's state, fed by topic sockets through the core. The robot world's
+// state lives in room.js.
 
 import { TopicSocket } from "./api.js";
 import { isFiniteNumber, stampSeconds, yawOf } from "./geometry.js";
@@ -22,6 +24,8 @@ export class World extends EventTarget {
     this.controlState = null;
     this.droneState = null;
     this.flyTarget = null; // the last clicked target {x, y}
+    this.kind = null; // "drone" | "robot" once /simulator/world has said; null before
+    this.namespaces = []; // the robot world's robots: ["/"] or ["/robot1", "/robot2", ...]
     this._speedRef = null; // an earlier pose to differentiate against
     this._sockets = [];
   }
@@ -32,6 +36,7 @@ export class World extends EventTarget {
       this._sockets.push(socket);
       return socket.open();
     };
+    sub("/simulator/world", { queue: 2 }, (msg) => this._onWorld(msg));
     this.poseSocket = sub("/drone/pose", { rate: 30 }, (msg) => this._onPose(msg));
     sub("/simulator/boxes", { rate: 2 }, (msg) => {
       this.simBoxes = (msg.poses || []).map((p) => ({ x: p.position.x, y: p.position.y, yaw: yawOf(p.orientation) }));
@@ -59,6 +64,15 @@ export class World extends EventTarget {
 
   clearTrack() {
     this.track = [];
+  }
+
+  _onWorld(msg) {
+    const kind = msg.world === "robot" ? "robot" : "drone";
+    const namespaces = Array.isArray(msg.namespaces) ? msg.namespaces.filter((ns) => typeof ns === "string") : [];
+    if (kind === this.kind && namespaces.join() === this.namespaces.join()) return;
+    this.kind = kind;
+    this.namespaces = namespaces;
+    this._emit("world");
   }
 
   _onPose(msg) {

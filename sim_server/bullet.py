@@ -1,0 +1,76 @@
+"""What every simulated world stands on: a PyBullet client of its own, the steps it has taken
+(sim time), and a lifecycle (``close``, or a ``with`` block).
+
+The drone's :class:`~sim_server.world.World` and the robot world's
+:class:`~sim_server.robot.world.RobotWorld` are both one; a world builds its bodies on a fresh
+simulation (:meth:`BulletWorld._fresh_simulation`) and steps it at PHYSICS_HZ.
+"""
+
+from __future__ import annotations
+
+from types import TracebackType
+from typing import Self
+
+import pybullet as p
+
+from sim_server.limits import GRAVITY_M_S2, PHYSICS_DT_S
+
+__all__ = ["BulletWorld"]
+
+
+class BulletWorld:
+    """A headless PyBullet client (``p.DIRECT``) and its clock. Not thread-safe."""
+
+    def __init__(self) -> None:
+        self._steps = 0
+        self._closed = False
+        self._client = p.connect(p.DIRECT)
+
+    def close(self) -> None:
+        """Disconnect the PyBullet client. Idempotent."""
+        if not self._closed:
+            self._closed = True
+            p.disconnect(physicsClientId=self._client)
+
+    def __enter__(self) -> Self:
+        return self
+
+    def __exit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        self.close()
+
+    @property
+    def client(self) -> int:
+        """The PyBullet physics client id of this world (for rendering)."""
+        self._check_open()
+        return self._client
+
+    @property
+    def time_s(self) -> float:
+        """Sim time: 1/240 s per physics step since the world was created."""
+        return self._steps * PHYSICS_DT_S
+
+    @property
+    def steps(self) -> int:
+        """Physics steps taken since the world was created."""
+        return self._steps
+
+    def _check_open(self) -> None:
+        if self._closed:
+            name = type(self).__name__
+            raise RuntimeError(f"this {name} is closed; create a new {name} to keep simulating")
+
+    def _fresh_simulation(self) -> int:
+        """Remove every body and start the simulation over (gravity, time step); the client.
+
+        A full rebuild, so a world after a reset is exactly a fresh one: no contact caches or
+        solver state survive. The clock keeps running."""
+        client = self._client
+        p.resetSimulation(physicsClientId=client)
+        p.setGravity(0.0, 0.0, -GRAVITY_M_S2, physicsClientId=client)
+        p.setTimeStep(PHYSICS_DT_S, physicsClientId=client)
+        return client

@@ -1,0 +1,79 @@
+"""The simulator's options: flags ``--world/--seed/--speed/--boxes/--robots/--obstacles`` or
+``SKYDECK_SIM_*`` variables. Pure settings: importing this loads no PyBullet."""
+
+from __future__ import annotations
+
+import math
+import random
+from typing import Literal
+
+from pydantic import Field, ValidationInfo, field_validator
+from pydantic_core import PydanticCustomError
+from pydantic_settings import BaseSettings, SettingsConfigDict
+
+from sim_server.limits import DEFAULT_BOXES, MAX_BOXES
+from sim_server.robot.limits import DEFAULT_OBSTACLES, MAX_OBSTACLES, MAX_ROBOTS
+
+__all__ = ["SimSettings", "draw_seed"]
+
+
+def draw_seed() -> int:
+    """A random 32-bit world seed (a world built without one draws one)."""
+    return random.SystemRandom().getrandbits(32)
+
+
+class SimSettings(BaseSettings):
+    """Which world, and its options; each world's own options are refused for the other."""
+
+    model_config = SettingsConfigDict(env_prefix="SKYDECK_SIM_", extra="ignore")
+
+    world: Literal["drone", "robot"] = "drone"
+    seed: int | None = Field(default=None, ge=0, le=2**32 - 1, description="None draws one")
+    speed: float | None = Field(
+        default=1.0, description="times real time; None is as fast as possible"
+    )
+    boxes: int = Field(
+        default=DEFAULT_BOXES, ge=0, le=MAX_BOXES, description="the drone world's falling boxes"
+    )
+    robots: int | None = Field(
+        default=None, ge=1, le=MAX_ROBOTS, description="the robot world's robots (default 1)"
+    )
+    obstacles: int | None = Field(
+        default=None,
+        ge=0,
+        le=MAX_OBSTACLES,
+        description=f"the robot world's box obstacles (default {DEFAULT_OBSTACLES})",
+    )
+
+    @field_validator("speed", mode="before")
+    @classmethod
+    def _parse_speed(cls, value: object) -> object:
+        if isinstance(value, str) and value.strip().lower() == "max":
+            return None
+        return value
+
+    @field_validator("speed")
+    @classmethod
+    def _check_speed(cls, value: float | None) -> float | None:
+        if value is not None and not (0 < value <= 1000 and math.isfinite(value)):
+            raise ValueError("speed must be a number in (0, 1000] or 'max'")
+        return value
+
+    @field_validator("robots", "obstacles")
+    @classmethod
+    def _robot_world_only(cls, value: int | None, info: ValidationInfo) -> int | None:
+        if value is not None and info.data.get("world") != "robot":
+            raise PydanticCustomError(
+                "robot_world_only", f"only the robot world has {info.field_name}: add --world robot"
+            )
+        return value
+
+    @property
+    def robot_count(self) -> int:
+        """How many robots the robot world has (1 unless ``robots`` says)."""
+        return 1 if self.robots is None else self.robots
+
+    @property
+    def obstacle_count(self) -> int:
+        """How many box obstacles the robot world has."""
+        return DEFAULT_OBSTACLES if self.obstacles is None else self.obstacles
