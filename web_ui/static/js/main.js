@@ -207,7 +207,7 @@ window.skydeck = Object.freeze({
   worldToClient: (x, y) => map.worldToClient(x, y),
   clientToWorld: (x, y) => map.clientToWorld(x, y),
   /** The 3D view: fixed frame, frames, camera, world, displays (what each draws, in the fixed frame), frame times. */
-  view3d: () => view3d.snapshot(),
+  view3d: (options) => view3d.snapshot(options),
 });
 
 function renderLegendLayers() {

@@ -68,7 +68,7 @@ export class View3DLoader {
   }
 
   /** The view's state for `window.skydeck.view3d()`, or null before it has loaded. */
-  snapshot() {
-    return this.view ? this.view.snapshot() : null;
+  snapshot(options) {
+    return this.view ? this.view.snapshot(options) : null;
   }
 }

@@ -4,6 +4,7 @@
 
 import { DISPLAY_TYPES } from "./displays/index.js";
 
+const TF_TYPE = "tf2_msgs/msg/TFMessage";
 const PALETTE = ["#ff5fd2", "#4dd0e1", "#ffd54f", "#aed581", "#ff8a65", "#b39ddb"];
 const STATUS_REFRESH_MS = 250;
 
@@ -51,7 +52,11 @@ export class DisplaysPanel {
   }
 
   renderOptions() {
-    const names = [...this._topics.keys()].filter((name) => !this.view.displays.has(name)).sort();
+    // One TF display draws the whole tree: once there is one, /tf and /tf_static have nothing to add.
+    const hasTf = [...this.view.displays.values()].some((d) => d.type === TF_TYPE);
+    const names = [...this._topics.keys()]
+      .filter((name) => !this.view.displays.has(name) && !(hasTf && this._topics.get(name) === TF_TYPE))
+      .sort();
     const key = names.map((n) => `${n}:${this._topics.get(n)}`).join("|");
     if (key === this._optionsKey) return;
     this._optionsKey = key;

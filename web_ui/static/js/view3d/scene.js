@@ -9,23 +9,28 @@ import { disposeObject, makeAxes } from "./shapes.js";
 
 const STATS_FRAMES = 600; // about 10 s of frames at 60 Hz
 
-/** Timing of the last frames: the interval between animation frames and our work in each. */
+/** Timing of the last frames: the interval between animation frames, and in each drawn frame our
+ * work: applying data to the scene (update) and three.js issuing the draw (draw). */
 class FrameStats {
   constructor() {
     this.intervals = [];
     this.work = [];
+    this.update = [];
+    this.draw = [];
     this.rendered = 0;
     this.ticks = 0;
     this._last = 0;
   }
 
-  record(now, workMs, rendered) {
+  record(now, updateMs, drawMs) {
     if (this._last) push(this.intervals, now - this._last);
     this._last = now;
     this.ticks += 1;
-    if (rendered) {
+    if (drawMs !== null) {
       this.rendered += 1;
-      push(this.work, workMs);
+      push(this.work, updateMs + drawMs);
+      push(this.update, updateMs);
+      push(this.draw, drawMs);
     }
   }
 
@@ -34,14 +39,17 @@ class FrameStats {
     this._last = 0;
   }
 
-  summary() {
-    const interval = percentiles(this.intervals);
+  /** Percentiles of the last `frames` frames (all kept, by default). */
+  summary(frames = STATS_FRAMES) {
+    const interval = percentiles(this.intervals.slice(-frames));
     return {
       ticks: this.ticks,
       rendered: this.rendered,
       fps: interval.mean ? 1000 / interval.mean : 0,
       intervalMs: interval,
-      workMs: percentiles(this.work),
+      workMs: percentiles(this.work.slice(-frames)),
+      updateMs: percentiles(this.update.slice(-frames)),
+      drawMs: percentiles(this.draw.slice(-frames)),
     };
   }
 }
@@ -170,12 +178,14 @@ export class Scene3D {
     this._raf = requestAnimationFrame(this._frame);
     const start = performance.now();
     const changed = this.onTick(now);
-    const render = changed || this._dirty;
-    if (render && this.canvas.width > 1 && this.canvas.height > 1) {
+    const updated = performance.now();
+    let drawMs = null;
+    if ((changed || this._dirty) && this.canvas.width > 1 && this.canvas.height > 1) {
       this.renderer.render(this.scene, this.camera);
       this._dirty = false;
+      drawMs = performance.now() - updated;
     }
-    this.stats.record(now, performance.now() - start, render);
+    this.stats.record(now, updated - start, drawMs);
   };
 
   _resize() {

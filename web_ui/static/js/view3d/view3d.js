@@ -250,8 +250,9 @@ export class View3D {
 
   // -- the debug hook ---------------------------------------------------------------------------
 
-  /** Plain data for `window.skydeck.view3d()`: what is drawn, in the fixed frame. */
-  snapshot() {
+  /** Plain data for `window.skydeck.view3d()`: what is drawn, in the fixed frame; frame times
+   * over the last `statsFrames` frames. */
+  snapshot({ statsFrames } = {}) {
     return {
       shown: this.scene.shown,
       fixedFrame: this.effectiveFixedFrame(),
@@ -262,7 +263,7 @@ export class View3D {
       world: this.world.snapshot(),
       grid: this.scene.grid.visible,
       displays: [...this.displays.values()].map((d) => d.snapshot()),
-      frameStats: this.scene.stats.summary(),
+      frameStats: this.scene.stats.summary(statsFrames),
     };
   }
 }

@@ -5,17 +5,30 @@
 // is at most one entry per marker.
 
 import * as THREE from "three";
-import { BadData, durationSeconds, frameName, setPoseMatrix, stampSeconds } from "../ros_math.js";
-import { disposeObject } from "../shapes.js";
+import { InstanceBatch } from "../instance_batch.js";
+import { BadData, durationSeconds, frameName, rgba, setPoseMatrix, setVector, stampSeconds } from "../ros_math.js";
+import { disposeObject, unitGeometry } from "../shapes.js";
 import { MARKER_TYPES, markerObject, markerWarnings } from "../marker_shapes.js";
-import { Display, worldPoint } from "./display.js";
+import { Display, round, worldPoint } from "./display.js";
 
 const ADD = 0;
 const DELETE = 2;
 const DELETEALL = 3;
 const MAX_MARKERS = 20_000; // per display; more is a runaway publisher, said on the display
 const _frameMatrix = new THREE.Matrix4();
+const _matrix = new THREE.Matrix4();
+const _scale = new THREE.Vector3();
 const _origin = new THREE.Vector3();
+// Opaque shapes of these types are drawn as instances of one mesh per type (one draw call each).
+const BATCHED = { 0: "arrow", 1: "box", 2: "sphere", 3: "cylinder" };
+
+/** The batch a marker goes in, or null when it is drawn as an object of its own. */
+function batchShape(marker) {
+  const shape = BATCHED[marker.type];
+  if (!shape || !(marker.color && marker.color.a >= 1)) return null;
+  if (shape === "arrow" && Array.isArray(marker.points) && marker.points.length >= 2) return null;
+  return shape;
+}
 
 export class MarkerDisplay extends Display {
   static rate = null;
@@ -26,8 +39,19 @@ export class MarkerDisplay extends Display {
     super(...args);
     this._incoming = new Map(); // key -> {marker, receivedAt} to draw, or null to delete
     this._clearAll = false;
-    this.objects = new Map(); // key -> {holder, marker, frame, stamp, locked, expiresAt, failed}
+    this.objects = new Map(); // key -> {holder | batch, pose, color, type, frame, stamp, locked, expiresAt, failed}
+    this.batches = new Map(); // shape -> InstanceBatch
     this._nextExpiry = Infinity;
+  }
+
+  _batch(shape) {
+    let batch = this.batches.get(shape);
+    if (!batch) {
+      batch = new InstanceBatch(unitGeometry()[shape]);
+      this.batches.set(shape, batch);
+      this.root.add(batch.mesh);
+    }
+    return batch;
   }
 
   receive(msg) {
@@ -86,42 +110,57 @@ export class MarkerDisplay extends Display {
       changed = true;
     }
     if (ctx.now >= this._nextExpiry) changed = this._expire(ctx.now) || changed;
+    for (const batch of this.batches.values()) batch.flush();
     return changed;
   }
 
   _draw(key, marker, receivedAt, ctx) {
     const statusKey = `Marker ${key}`;
-    const old = this.objects.get(key);
+    let old = this.objects.get(key);
     try {
       const pose = setPoseMatrix(new THREE.Matrix4(), marker.pose, "pose");
-      const shape = markerObject(marker, old ? old.holder.children[0] : null);
-      const holder = old ? old.holder : new THREE.Group();
-      holder.matrixAutoUpdate = false;
-      if (!old) {
-        holder.add(shape);
-        this.root.add(holder);
-      } else if (holder.children[0] !== shape) {
-        holder.remove(holder.children[0]);
-        holder.add(shape);
+      const shape = batchShape(marker);
+      if (old && (shape === null) !== (old.batch === null)) {
+        this._remove(key); // moving between a batch and an object of its own
+        old = null;
       }
-      const lifetime = durationSeconds(marker.lifetime);
       const entry = {
-        holder,
+        holder: null,
+        batch: null,
         pose,
+        color: null,
         type: marker.type,
         frame: frameName(marker.header && marker.header.frame_id) || null,
         stamp: stampSeconds(marker.header && marker.header.stamp),
         locked: marker.frame_locked === true,
-        expiresAt: lifetime > 0 ? receivedAt + lifetime : Infinity,
+        expiresAt: Infinity,
         failed: false,
       };
+      if (shape) {
+        setVector(_scale, marker.scale, "scale");
+        entry.pose = pose.scale(_scale);
+        entry.color = rgba(marker.color, "color")[0];
+        if (old && old.batch !== this._batch(shape)) old.batch.remove(key);
+        entry.batch = this._batch(shape);
+      } else {
+        const object = markerObject(marker, old ? old.holder.children[0] : null);
+        entry.holder = old ? old.holder : new THREE.Group();
+        entry.holder.matrixAutoUpdate = false;
+        if (!old) this.root.add(entry.holder.add(object));
+        else if (entry.holder.children[0] !== object) {
+          entry.holder.remove(entry.holder.children[0]);
+          entry.holder.add(object);
+        }
+      }
+      const lifetime = durationSeconds(marker.lifetime);
+      entry.expiresAt = lifetime > 0 ? receivedAt + lifetime : Infinity;
       this.objects.set(key, entry);
       this._nextExpiry = Math.min(this._nextExpiry, entry.expiresAt);
       const warnings = markerWarnings(marker);
       if (entry.frame === null) warnings.push("no frame_id: drawn in the fixed frame");
       if (warnings.length) this.setStatus(statusKey, "warn", warnings.join("; "));
       else this.clearStatus(statusKey);
-      this._place(entry, ctx, entry.stamp);
+      this._place(key, entry, ctx, entry.stamp);
     } catch (error) {
       if (!(error instanceof BadData)) throw error;
       if (old) this._remove(key);
@@ -129,29 +168,35 @@ export class MarkerDisplay extends Display {
     }
   }
 
-  /** holder.matrix = (frame -> fixed frame) * pose; a frame with no path hides the marker. */
-  _place(entry, ctx, stamp) {
+  /** (frame -> fixed frame) * pose, into the marker's holder or batch slot; a frame with no path
+   * hides the marker and says why. */
+  _place(key, entry, ctx, stamp) {
     const found = entry.frame === null ? { matrix: _frameMatrix.identity() } : ctx.lookup(entry.frame, stamp, _frameMatrix);
     const statusKey = `Frame ${entry.frame}`;
     if (found.error) {
       entry.failed = true;
-      entry.holder.visible = false;
+      if (entry.batch) entry.batch.remove(key);
+      else entry.holder.visible = false;
       this.setStatus(statusKey, "error", found.error);
       return;
     }
     entry.failed = false;
-    entry.holder.visible = true;
-    entry.holder.matrix.multiplyMatrices(found.matrix, entry.pose);
-    entry.holder.matrixWorldNeedsUpdate = true;
+    if (entry.batch) {
+      entry.batch.set(key, _matrix.multiplyMatrices(found.matrix, entry.pose), entry.color);
+    } else {
+      entry.holder.visible = true;
+      entry.holder.matrix.multiplyMatrices(found.matrix, entry.pose);
+      entry.holder.matrixWorldNeedsUpdate = true;
+    }
     if (found.clockNote) this.setStatus(statusKey, "warn", found.clockNote);
     else this.clearStatus(statusKey);
   }
 
   placeAgain(ctx) {
     let changed = false;
-    for (const entry of this.objects.values()) {
+    for (const [key, entry] of this.objects) {
       if (ctx.fixedFrameChanged || entry.failed) {
-        this._place(entry, ctx, null);
+        this._place(key, entry, ctx, null);
         changed = true;
       }
     }
@@ -162,9 +207,9 @@ export class MarkerDisplay extends Display {
   tick(ctx) {
     if (!ctx.tfChanged) return false;
     let changed = false;
-    for (const entry of this.objects.values()) {
+    for (const [key, entry] of this.objects) {
       if (entry.locked) {
-        this._place(entry, ctx, null);
+        this._place(key, entry, ctx, null);
         changed = true;
       }
     }
@@ -189,23 +234,29 @@ export class MarkerDisplay extends Display {
   _remove(key) {
     const entry = this.objects.get(key);
     if (!entry) return;
-    entry.holder.removeFromParent();
-    disposeObject(entry.holder);
+    if (entry.batch) {
+      entry.batch.remove(key);
+    } else {
+      entry.holder.removeFromParent();
+      disposeObject(entry.holder);
+    }
     this.objects.delete(key);
   }
 
   drawn() {
     const markers = [];
     for (const [key, entry] of this.objects) {
-      if (!entry.holder.visible) continue;
+      if (entry.failed || (entry.holder && !entry.holder.children[0].visible)) continue;
       const [ns, id] = [key.slice(0, key.lastIndexOf("/")), Number(key.slice(key.lastIndexOf("/") + 1))];
-      markers.push({ ns, id, type: MARKER_TYPES[entry.type], position: worldPoint(entry.holder, _origin) });
+      const position = entry.batch ? entry.batch.positionOf(key).applyMatrix4(this.root.matrixWorld).toArray().map(round) : worldPoint(entry.holder, _origin);
+      markers.push({ ns, id, type: MARKER_TYPES[entry.type], position, batched: !!entry.batch });
     }
     return { objects: markers.length, markers, points: markers.map((m) => m.position) };
   }
 
   dispose() {
     for (const key of [...this.objects.keys()]) this._remove(key);
+    for (const batch of this.batches.values()) batch.dispose();
     super.dispose();
   }
 }
