@@ -93,7 +93,9 @@ class RobotStandIn(Node):
         laser = TransformStamped(
             header=Header(stamp=_stamp(time.time()), frame_id="base_link"),
             child_frame_id="base_laser_link",
-            transform=Transform(translation=Vector3(x=LASER_OFFSET[0], y=LASER_OFFSET[1], z=LASER_OFFSET[2])),
+            transform=Transform(
+                translation=Vector3(x=LASER_OFFSET[0], y=LASER_OFFSET[1], z=LASER_OFFSET[2])
+            ),
         )
         self.tf_static.publish(TFMessage(transforms=[laser]))
 
@@ -107,7 +109,13 @@ class RobotStandIn(Node):
         odom.pose.pose.orientation = _yaw(yaw)
         self.odom.publish(odom)
         transform = Transform(translation=Vector3(x=x, y=y), rotation=_yaw(yaw))
-        self.tf.publish(TFMessage(transforms=[TransformStamped(header=header, child_frame_id="base_link", transform=transform)]))
+        self.tf.publish(
+            TFMessage(
+                transforms=[
+                    TransformStamped(header=header, child_frame_id="base_link", transform=transform)
+                ]
+            )
+        )
 
     def publish_scan(self) -> None:
         t = time.time()

@@ -39,11 +39,28 @@ from shared_models.tf2_msgs import TFMessage
 from shared_models.visualization_msgs import Marker, MarkerArray
 from tests.web_ui.system import System
 from tests.web_ui.threaded_node import ThreadedNode
-from tests.web_ui.view3d_page import add_by_topic, open_3d, row, status_texts, view, wait_display, wait_view
+from tests.web_ui.view3d_page import (
+    add_by_topic,
+    open_3d,
+    row,
+    status_texts,
+    view,
+    wait_display,
+    wait_view,
+)
 
 pytestmark = [pytest.mark.browser, pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(120)]
 
-MARKER_TYPES = ["ARROW", "CUBE", "SPHERE", "CYLINDER", "LINE_STRIP", "LINE_LIST", "POINTS", "TEXT_VIEW_FACING"]
+MARKER_TYPES = [
+    "ARROW",
+    "CUBE",
+    "SPHERE",
+    "CYLINDER",
+    "LINE_STRIP",
+    "LINE_LIST",
+    "POINTS",
+    "TEXT_VIEW_FACING",
+]
 
 
 @pytest.fixture(scope="module")
@@ -58,7 +75,9 @@ def get_latest(system: System, topic: str) -> dict[str, object]:
         return json.loads(reply.read())  # type: ignore[no-any-return]
 
 
-def marker(kind: str, marker_id: int, *, ns: str = "shapes", frame: str = "map", **fields: object) -> Marker:
+def marker(
+    kind: str, marker_id: int, *, ns: str = "shapes", frame: str = "map", **fields: object
+) -> Marker:
     """A visible marker of type ``kind`` at x = ``marker_id`` (fields override)."""
     m = Marker(
         header=Header(frame_id=frame),
@@ -85,19 +104,31 @@ def test_3d_view_draws_the_drone_world_from_local_files(dashboard, system: Syste
     page, recorder = dashboard
     open_3d(page)
     boxes = get_latest(system, "/simulator/boxes")["poses"]
-    v = wait_view(page, f"v.world.drone.present && v.world.drone.boxes.length === {len(boxes)} && v.world.drone.drone !== null")
+    v = wait_view(
+        page,
+        f"v.world.drone.present && v.world.drone.boxes.length === {len(boxes)} && v.world.drone.drone !== null",
+    )
     assert v["fixedFrame"] == "map" and v["fixedFrameChoice"] is None
     assert v["globalStatus"] == ""
     assert {"frame": "map", "parent": None, "static": None} in v["frames"]
     expected = sorted((b["position"]["x"], b["position"]["y"]) for b in boxes)  # type: ignore[index]
     drawn = sorted((x, y) for x, y, _ in v["world"]["drone"]["boxes"])
-    assert all(distance(list(e), list(d)) < 0.1 for e, d in zip(expected, drawn, strict=True)), (expected, drawn)
+    assert all(distance(list(e), list(d)) < 0.1 for e, d in zip(expected, drawn, strict=True)), (
+        expected,
+        drawn,
+    )
     pose = page.evaluate("window.skydeck.pose")
     assert distance(v["world"]["drone"]["drone"], [pose["x"], pose["y"], pose["z"]]) < 0.3
     core = urlsplit(system.url).netloc
     assert any(u.endswith("/static/vendor/three/build/three.module.js") for u in recorder.urls)
-    assert any("/static/vendor/three/examples/jsm/controls/OrbitControls.js" in u for u in recorder.urls)
-    outside = [u for u in recorder.urls if not u.startswith(("data:", "blob:")) and urlsplit(u).netloc != core]
+    assert any(
+        "/static/vendor/three/examples/jsm/controls/OrbitControls.js" in u for u in recorder.urls
+    )
+    outside = [
+        u
+        for u in recorder.urls
+        if not u.startswith(("data:", "blob:")) and urlsplit(u).netloc != core
+    ]
     assert outside == [], f"requests leaving the core: {outside}"
     assert page.locator("#map").is_hidden() and page.locator("#view3d-canvas").is_visible()
     assert recorder.errors == []
@@ -130,15 +161,28 @@ def test_orbit_pan_zoom_top_down_and_follow(dashboard, system: System) -> None: 
     )
     page.click("#view3d-top")
     top = view(page)["camera"]
-    assert abs(top["position"][0] - top["target"][0]) < 0.1 and abs(top["position"][1] - top["target"][1]) < 0.1
-    assert top["position"][2] - top["target"][2] > 10, "top-down looks straight down from above the world"
+    assert (
+        abs(top["position"][0] - top["target"][0]) < 0.1
+        and abs(top["position"][1] - top["target"][1]) < 0.1
+    )
+    assert top["position"][2] - top["target"][2] > 10, (
+        "top-down looks straight down from above the world"
+    )
     page.click("#view3d-follow")
     assert page.get_attribute("#view3d-follow", "aria-pressed") == "true"
-    request = urllib.request.Request(system.url + "/control/take_off", data=b"{}", method="POST", headers={"Content-Type": "application/json"})
+    request = urllib.request.Request(
+        system.url + "/control/take_off",
+        data=b"{}",
+        method="POST",
+        headers={"Content-Type": "application/json"},
+    )
     with urllib.request.urlopen(request, timeout=10) as reply:
         assert json.loads(reply.read())["success"] is True
     # Following: the orbit target rides with the drone as it climbs.
-    v = wait_view(page, "v.camera.target[2] > 1.0 && Math.hypot(...v.camera.target.map((t, i) => t - v.world.drone.drone[i])) < 0.3")
+    v = wait_view(
+        page,
+        "v.camera.target[2] > 1.0 && Math.hypot(...v.camera.target.map((t, i) => t - v.world.drone.drone[i])) < 0.3",
+    )
     assert v["camera"]["follow"] is True
 
 
@@ -146,18 +190,30 @@ def test_add_by_topic_lists_live_topics_with_a_display(dashboard) -> None:  # ty
     page, recorder = dashboard
     open_3d(page)
     page.wait_for_selector("#view3d-add-select option[value='/simulator/boxes']", state="attached")
-    offered = page.eval_on_selector_all("#view3d-add-select option", "options => options.map(o => o.value)")
-    assert "/drone/pose" in offered and "/simulator/boxes" in offered and "/simulator/camera" in offered
-    assert "/drone/state" not in offered and "/clock" not in offered, "types without a display are not offered"
+    offered = page.eval_on_selector_all(
+        "#view3d-add-select option", "options => options.map(o => o.value)"
+    )
+    assert (
+        "/drone/pose" in offered
+        and "/simulator/boxes" in offered
+        and "/simulator/camera" in offered
+    )
+    assert "/drone/state" not in offered and "/clock" not in offered, (
+        "types without a display are not offered"
+    )
     add_by_topic(page, "/simulator/boxes")
-    boxes = wait_display(page, "/simulator/boxes", "d.objects === v.world.drone.boxes.length && d.objects > 0")
+    boxes = wait_display(
+        page, "/simulator/boxes", "d.objects === v.world.drone.boxes.length && d.objects > 0"
+    )
     world_boxes = view(page)["world"]["drone"]["boxes"]
     for point in boxes["points"]:
         assert min(distance(point, b) for b in world_boxes) < 0.1, "a box's arrow is at its centre"
     add_by_topic(page, "/drone/pose")
     pose = wait_display(page, "/drone/pose", "d.objects === 1")
     assert distance(pose["points"][0], view(page)["world"]["drone"]["drone"]) < 0.3
-    assert "/drone/pose" not in page.eval_on_selector_all("#view3d-add-select option", "o => o.map(x => x.value)")
+    assert "/drone/pose" not in page.eval_on_selector_all(
+        "#view3d-add-select option", "o => o.map(x => x.value)"
+    )
     # Recolour, hide, remove.
     row(page, "/drone/pose").locator("[data-action=color]").fill("#123456")
     wait_display(page, "/drone/pose", "d.color === '#123456'")
@@ -170,7 +226,9 @@ def test_add_by_topic_lists_live_topics_with_a_display(dashboard) -> None:  # ty
     assert recorder.errors == []
 
 
-def test_a_frame_with_no_path_is_not_drawn_and_says_why(dashboard, my_point, test_node: ThreadedNode) -> None:  # type: ignore[no-untyped-def]
+def test_a_frame_with_no_path_is_not_drawn_and_says_why(
+    dashboard, my_point, test_node: ThreadedNode
+) -> None:  # type: ignore[no-untyped-def]
     """The seed's /my_point is in `odom`, which the drone world does not have: not drawn, and the
     display says why; once a transform map -> odom exists, the point appears with no other step."""
     page, _ = dashboard
@@ -179,17 +237,25 @@ def test_a_frame_with_no_path_is_not_drawn_and_says_why(dashboard, my_point, tes
     d = wait_display(page, "/my_point", "d.status.level === 'error'")
     assert not d["drawn"]
     assert "Transform: Frame [odom] does not exist" in status_texts(d)
-    offset = TransformStamped(header=Header(frame_id="map"), child_frame_id="odom", transform=Transform(translation=Vector3(x=10.0)))
+    offset = TransformStamped(
+        header=Header(frame_id="map"),
+        child_frame_id="odom",
+        transform=Transform(translation=Vector3(x=10.0)),
+    )
     test_node.publish_every("/tf_static", lambda: TFMessage(transforms=[offset]), 0.5)
     try:
         d = wait_display(page, "/my_point", "d.drawn && d.objects === 1")
-        assert distance(d["points"][0], [11.0, 2.0, 0.0]) < 1e-3, "(1, 2, 0) in odom is (11, 2, 0) in map"
+        assert distance(d["points"][0], [11.0, 2.0, 0.0]) < 1e-3, (
+            "(1, 2, 0) in odom is (11, 2, 0) in map"
+        )
         assert d["status"]["level"] == "ok"
     finally:
         test_node.stop("/tf_static")
 
 
-def test_markers_by_type_with_delete_deleteall_and_lifetime(dashboard, test_node: ThreadedNode) -> None:  # type: ignore[no-untyped-def]
+def test_markers_by_type_with_delete_deleteall_and_lifetime(
+    dashboard, test_node: ThreadedNode
+) -> None:  # type: ignore[no-untyped-def]
     page, recorder = dashboard
     open_3d(page)
     shapes = [marker(kind, i) for i, kind in enumerate(MARKER_TYPES)]
@@ -203,13 +269,18 @@ def test_markers_by_type_with_delete_deleteall_and_lifetime(dashboard, test_node
     for m in d["markers"]:
         assert distance(m["position"], [float(m["id"]), 0.0, 1.0]) < 1e-3, m
     assert d["status"]["level"] == "ok", status_texts(d)
-    test_node.publish("/test_markers", MarkerArray(markers=[marker("CUBE", 1, action=Marker.DELETE)]))
+    test_node.publish(
+        "/test_markers", MarkerArray(markers=[marker("CUBE", 1, action=Marker.DELETE)])
+    )
     d = wait_display(page, "/test_markers", f"d.objects === {len(shapes) - 1}")
     assert 1 not in [m["id"] for m in d["markers"]]
     test_node.publish("/test_markers", MarkerArray(markers=[Marker(action=Marker.DELETEALL)]))
     wait_display(page, "/test_markers", "d.objects === 0")
     # Many at once, then lifetime: a marker that lives 1 s is drawn, then goes by itself.
-    cubes = [marker("CUBE", i, ns="many", pose=Pose(position=Point(x=i % 20, y=i // 20))) for i in range(200)]
+    cubes = [
+        marker("CUBE", i, ns="many", pose=Pose(position=Point(x=i % 20, y=i // 20)))
+        for i in range(200)
+    ]
     test_node.publish("/test_markers", MarkerArray(markers=cubes))
     wait_display(page, "/test_markers", "d.objects === 200")
     test_node.publish("/test_markers", MarkerArray(markers=[Marker(action=Marker.DELETEALL)]))
@@ -222,20 +293,30 @@ def test_markers_by_type_with_delete_deleteall_and_lifetime(dashboard, test_node
     assert recorder.errors == []
 
 
-def test_bad_data_is_skipped_with_a_note_and_nothing_else_breaks(dashboard, test_node: ThreadedNode) -> None:  # type: ignore[no-untyped-def]
+def test_bad_data_is_skipped_with_a_note_and_nothing_else_breaks(
+    dashboard, test_node: ThreadedNode
+) -> None:  # type: ignore[no-untyped-def]
     page, recorder = dashboard
     open_3d(page)
     good = marker("CUBE", 0, ns="good")
     unknown = marker("CUBE", 1, ns="bad", type=42)
-    flat = marker("CUBE", 2, ns="bad", pose=Pose(orientation=Quaternion(x=0.0, y=0.0, z=0.0, w=0.0)))
+    flat = marker(
+        "CUBE", 2, ns="bad", pose=Pose(orientation=Quaternion(x=0.0, y=0.0, z=0.0, w=0.0))
+    )
     lost = marker("CUBE", 3, ns="bad", header=Header(frame_id="nowhere"))
-    test_node.publish_every("/bad_markers", lambda: MarkerArray(markers=[good, unknown, flat, lost]), 0.2)
-    zero_pose = PoseStamped(header=Header(frame_id="map"), pose=Pose(orientation=Quaternion(x=0.0, y=0.0, z=0.0, w=0.0)))
+    test_node.publish_every(
+        "/bad_markers", lambda: MarkerArray(markers=[good, unknown, flat, lost]), 0.2
+    )
+    zero_pose = PoseStamped(
+        header=Header(frame_id="map"), pose=Pose(orientation=Quaternion(x=0.0, y=0.0, z=0.0, w=0.0))
+    )
     test_node.publish_every("/bad_pose", lambda: zero_pose, 0.2)
     try:
         add_by_topic(page, "/bad_markers")
         add_by_topic(page, "/bad_pose")
-        markers = wait_display(page, "/bad_markers", "d.objects === 1 && d.status.entries.length >= 4")
+        markers = wait_display(
+            page, "/bad_markers", "d.objects === 1 && d.status.entries.length >= 4"
+        )
         pose = wait_display(page, "/bad_pose", "d.status.level === 'error'")
     finally:
         test_node.stop("/bad_markers")
@@ -245,7 +326,10 @@ def test_bad_data_is_skipped_with_a_note_and_nothing_else_breaks(dashboard, test
     assert "Marker bad/1: marker skipped: unknown marker type 42" in notes
     assert "Marker bad/2: CUBE skipped: pose.orientation is a quaternion of zero length" in notes
     assert "Frame nowhere: Frame [nowhere] does not exist" in notes
-    assert "Message: message skipped: pose.orientation is a quaternion of zero length" in status_texts(pose)
+    assert (
+        "Message: message skipped: pose.orientation is a quaternion of zero length"
+        in status_texts(pose)
+    )
     assert pose["objects"] == 0
     # The panel shows the notes on those displays.
     assert "unknown marker type 42" in row(page, "/bad_markers").inner_text()
@@ -265,9 +349,17 @@ def test_bad_data_is_skipped_with_a_note_and_nothing_else_breaks(dashboard, test
         return { status: d.status(), objects: d.drawn().objects, rejected: tree.rejected, frames: tree.frames(), reason: tree.lastRejection };
     }"""
     )
-    assert {"key": "Message", "level": "error", "text": "message skipped: pose.position is not a finite x, y, z"} in result["status"]["entries"]
+    assert {
+        "key": "Message",
+        "level": "error",
+        "text": "message skipped: pose.position is not a finite x, y, z",
+    } in result["status"]["entries"]
     assert result["objects"] == 0
-    assert result["rejected"] == 1 and result["frames"] == [] and "translation is not a finite" in result["reason"]
+    assert (
+        result["rejected"] == 1
+        and result["frames"] == []
+        and "translation is not a finite" in result["reason"]
+    )
     # The view goes on drawing the world and the good marker.
     rendered = view(page)["frameStats"]["rendered"]
     page.mouse.move(700, 400)
@@ -281,10 +373,21 @@ def test_polygons_paths_and_points(dashboard, test_node: ThreadedNode) -> None: 
     open_3d(page)
     square = [Point32(x=x, y=y, z=0.0) for x, y in ((0, 0), (2, 0), (2, 2), (0, 2))]
     test_node.publish_every("/test_polygon", lambda: Polygon(points=square), 0.2)
-    test_node.publish_every("/test_polygon_stamped", lambda: PolygonStamped(header=Header(frame_id="map"), polygon=Polygon(points=square)), 0.2)
-    path = NavPath(header=Header(frame_id="map"), poses=[PoseStamped(pose=Pose(position=Point(x=float(i), y=-1.0, z=0.5))) for i in range(5)])
+    test_node.publish_every(
+        "/test_polygon_stamped",
+        lambda: PolygonStamped(header=Header(frame_id="map"), polygon=Polygon(points=square)),
+        0.2,
+    )
+    path = NavPath(
+        header=Header(frame_id="map"),
+        poses=[PoseStamped(pose=Pose(position=Point(x=float(i), y=-1.0, z=0.5))) for i in range(5)],
+    )
     test_node.publish_every("/test_path", lambda: path, 0.2)
-    test_node.publish_every("/test_point", lambda: PointStamped(header=Header(frame_id="map"), point=Point(x=3.0, y=4.0, z=5.0)), 0.2)
+    test_node.publish_every(
+        "/test_point",
+        lambda: PointStamped(header=Header(frame_id="map"), point=Point(x=3.0, y=4.0, z=5.0)),
+        0.2,
+    )
     try:
         for topic in ("/test_polygon", "/test_polygon_stamped", "/test_path", "/test_point"):
             add_by_topic(page, topic)
@@ -306,11 +409,24 @@ def test_image_panels_for_compressed_and_raw_images(dashboard, test_node: Thread
     open_3d(page)
     add_by_topic(page, "/simulator/camera")
     wait_display(page, "/simulator/camera", "d.frames > 0")
-    assert page.locator("figure.view3d-image[data-topic='/simulator/camera'] img").get_attribute("src").startswith("data:image/")
+    assert (
+        page.locator("figure.view3d-image[data-topic='/simulator/camera'] img")
+        .get_attribute("src")
+        .startswith("data:image/")
+    )
     # A 2 x 2 rgb8 image with rows padded to 8 bytes: red, green / blue, white.
     pixels = bytes([255, 0, 0, 0, 255, 0, 9, 9, 0, 0, 255, 255, 255, 255, 9, 9])
-    raw = Image(header=Header(frame_id="camera"), height=2, width=2, encoding="rgb8", step=8, data=pixels)
-    odd = Image(header=Header(frame_id="camera"), height=2, width=2, encoding="yuv422", step=4, data=bytes(8))
+    raw = Image(
+        header=Header(frame_id="camera"), height=2, width=2, encoding="rgb8", step=8, data=pixels
+    )
+    odd = Image(
+        header=Header(frame_id="camera"),
+        height=2,
+        width=2,
+        encoding="yuv422",
+        step=4,
+        data=bytes(8),
+    )
     test_node.publish_every("/test_image", lambda: raw, 0.2)
     test_node.publish_every("/test_odd_image", lambda: odd, 0.2)
     try:
@@ -329,14 +445,16 @@ def test_image_panels_for_compressed_and_raw_images(dashboard, test_node: Thread
     }"""
     )
     assert colours == [255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255]
-    assert any("encoding \"yuv422\" is not shown" in line for line in status_texts(odd_display))
+    assert any('encoding "yuv422" is not shown' in line for line in status_texts(odd_display))
     # Hidden, an image display reads nothing (images are heavy).
     row(page, "/test_image").locator("[data-action=visible]").uncheck()
     page.wait_for_function("!window.skydeck.sockets().some(s => s.topic === '/test_image')")
     assert page.locator("figure.view3d-image[data-topic='/test_image']").is_hidden()
 
 
-def test_displays_fixed_frame_and_camera_survive_a_reload_and_a_file(dashboard, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+def test_displays_fixed_frame_and_camera_survive_a_reload_and_a_file(
+    dashboard, tmp_path: Path
+) -> None:  # type: ignore[no-untyped-def]
     page, recorder = dashboard
     open_3d(page)
     add_by_topic(page, "/simulator/boxes", color="#123456")
@@ -351,17 +469,29 @@ def test_displays_fixed_frame_and_camera_survive_a_reload_and_a_file(dashboard, 
     page.mouse.move(box["x"] + 320, box["y"] + 170, steps=6)
     page.mouse.up()
     before = view(page)
-    page.wait_for_function("(localStorage.getItem('skydeck.view3d') || '').includes('\"length\":1.5')")
+    page.wait_for_function(
+        "(localStorage.getItem('skydeck.view3d') || '').includes('\"length\":1.5')"
+    )
     page.wait_for_function(
         "JSON.parse(localStorage.getItem('skydeck.view3d')).camera.position.every((p, i) => Math.abs(p - window.skydeck.view3d().camera.position[i]) < 1e-9)"
     )
     page.reload()
-    page.wait_for_function("window.skydeck && window.skydeck.view3d() && window.skydeck.view3d().shown", timeout=20_000)
+    page.wait_for_function(
+        "window.skydeck && window.skydeck.view3d() && window.skydeck.view3d().shown", timeout=20_000
+    )
     after = wait_view(page, "v.displays.length === 2")
-    assert page.get_attribute("[data-tab=view3d]", "aria-selected") == "true", "the 3D tab is still the one shown"
-    shown = {d["topic"]: (d["type"], d["color"], d["visible"], d["options"]) for d in after["displays"]}
-    assert shown == {d["topic"]: (d["type"], d["color"], d["visible"], d["options"]) for d in before["displays"]}
-    assert shown["/simulator/boxes"][1] == "#123456" and shown["/simulator/boxes"][3] == {"length": 1.5}
+    assert page.get_attribute("[data-tab=view3d]", "aria-selected") == "true", (
+        "the 3D tab is still the one shown"
+    )
+    shown = {
+        d["topic"]: (d["type"], d["color"], d["visible"], d["options"]) for d in after["displays"]
+    }
+    assert shown == {
+        d["topic"]: (d["type"], d["color"], d["visible"], d["options"]) for d in before["displays"]
+    }
+    assert shown["/simulator/boxes"][1] == "#123456" and shown["/simulator/boxes"][3] == {
+        "length": 1.5
+    }
     assert shown["/drone/pose"][2] is False
     assert after["fixedFrameChoice"] == "map"
     assert distance(after["camera"]["position"], before["camera"]["position"]) < 1e-6
@@ -392,8 +522,9 @@ def test_displays_fixed_frame_and_camera_survive_a_reload_and_a_file(dashboard, 
     partial = tmp_path / "partial.json"
     partial.write_text(json.dumps(document))
     page.set_input_files("#view3d-load", str(partial))
-    page.wait_for_function("document.querySelector('#view3d-file-result').dataset.kind === 'refused'")
-    assert "no display for type \"std_msgs/msg/String\"" in page.inner_text("#view3d-file-result")
+    page.wait_for_function(
+        "document.querySelector('#view3d-file-result').dataset.kind === 'refused'"
+    )
+    assert 'no display for type "std_msgs/msg/String"' in page.inner_text("#view3d-file-result")
     assert len(view(page)["displays"]) == 2
     assert recorder.errors == []
-

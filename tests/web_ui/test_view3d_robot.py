@@ -72,17 +72,25 @@ def test_scan_added_by_topic_draws_points_at_the_walls(dashboard) -> None:  # ty
     page, recorder = dashboard
     v = view(page)
     assert v["fixedFrame"] == "odom", "the default fixed frame is the root of the robot's tree"
-    assert {f["frame"]: f["parent"] for f in v["frames"]} == {"odom": None, "base_link": "odom", "base_laser_link": "base_link"}
+    assert {f["frame"]: f["parent"] for f in v["frames"]} == {
+        "odom": None,
+        "base_link": "odom",
+        "base_laser_link": "base_link",
+    }
     add_by_topic(page, "/scan")
     stamp = 0.0
     for _ in range(3):  # three scans in a row, taken as the robot drives and turns
         scan = wait_display(page, "/scan", f"d.stamp > {stamp} && d.points.length > 100")
         stamp = scan["stamp"]
         expected = [r for r in robot.scan_at(stamp) if r > 0]
-        assert len(scan["points"]) == len(expected), "one point per beam with a return (0.0 is no return)"
+        assert len(scan["points"]) == len(expected), (
+            "one point per beam with a return (0.0 is no return)"
+        )
         worst = max(off_the_walls(p) for p in scan["points"])
         assert worst < WALL_TOLERANCE_M, f"a scan point is {worst:.3f} m off the walls"
-        assert all(abs(p[2] - robot.LASER_OFFSET[2]) < 1e-3 for p in scan["points"]), "at the laser's height"
+        assert all(abs(p[2] - robot.LASER_OFFSET[2]) < 1e-3 for p in scan["points"]), (
+            "at the laser's height"
+        )
         assert scan["status"]["level"] == "ok"
     assert recorder.errors == []
 
@@ -97,13 +105,17 @@ def test_fixed_frame_base_link_keeps_the_scan_with_the_robot(dashboard) -> None:
     first = wait_view(page, "v.fixedFrame === 'base_link'")
     switched_at = next(d for d in first["displays"] if d["topic"] == "/scan")["stamp"]
     for _ in range(3):  # three scans in a row, the robot driving on all the while
-        scan = wait_display(page, "/scan", f"v.fixedFrame === 'base_link' && d.stamp > {switched_at}")
+        scan = wait_display(
+            page, "/scan", f"v.fixedFrame === 'base_link' && d.stamp > {switched_at}"
+        )
         switched_at = scan["stamp"]
         v = view(page)
         assert v["world"]["robot"]["robot"] == [0, 0, 0], "in base_link the robot is at the origin"
         assert v["world"]["robot"]["laser"] == list(robot.LASER_OFFSET)
         worst = max(off_the_walls(to_odom(p, scan["stamp"])) for p in scan["points"])
-        assert worst < WALL_TOLERANCE_M, f"the scan is {worst:.3f} m off the robot's view of the walls"
+        assert worst < WALL_TOLERANCE_M, (
+            f"the scan is {worst:.3f} m off the robot's view of the walls"
+        )
         nearest = min(math.dist(p[:2], robot.LASER_OFFSET[:2]) for p in scan["points"])
         assert nearest >= robot.RANGE_MIN_M
     odom = wait_display(page, "/odom", "d.objects === 1")
@@ -125,7 +137,9 @@ def test_tf_display_draws_each_frame_with_its_name(dashboard) -> None:  # type: 
     assert abs(math.dist(base[:2], laser[:2]) - robot.LASER_OFFSET[0]) < 1e-3
     assert abs(laser[2] - base[2] - robot.LASER_OFFSET[2]) < 1e-3
     # /tf_static is in the same tree: with a TF display there, it is not offered again.
-    page.wait_for_function("![...document.querySelectorAll('#view3d-add-select option')].some(o => o.value === '/tf_static')")
+    page.wait_for_function(
+        "![...document.querySelectorAll('#view3d-add-select option')].some(o => o.value === '/tf_static')"
+    )
     names = page.evaluate("window.skydeck.view3d().displays[0].frames.map(f => f.frame)")
     assert sorted(names) == ["base_laser_link", "base_link", "odom"]
 
@@ -135,7 +149,9 @@ def test_odometry_arrow_and_trail(dashboard) -> None:  # type: ignore[no-untyped
     add_by_topic(page, "/odom")
     d = wait_display(page, "/odom", "d.objects === 1 && d.trail > 10")
     robot_at = view(page)["world"]["robot"]["robot"]
-    assert math.dist(d["points"][0][:2], robot_at[:2]) < 0.05, "the arrow is where TF puts base_link"
+    assert math.dist(d["points"][0][:2], robot_at[:2]) < 0.05, (
+        "the arrow is where TF puts base_link"
+    )
     centre = robot.CIRCLE_CENTRE
     assert abs(math.dist(d["points"][0][:2], centre) - robot.CIRCLE_RADIUS_M) < 0.01
 
@@ -164,7 +180,9 @@ def test_frame_time_with_a_scan_odometry_and_500_markers(dashboard, system: Syst
                     ns="load",
                     id=i,
                     type=Marker.CUBE,
-                    pose=Pose(position=Point(x=-3.5 + (i % 25) * 0.3, y=-3.5 + (i // 25) * 0.35, z=0.05)),
+                    pose=Pose(
+                        position=Point(x=-3.5 + (i % 25) * 0.3, y=-3.5 + (i // 25) * 0.35, z=0.05)
+                    ),
                     scale=Vector3(x=0.1, y=0.1, z=0.1),
                     color=ColorRGBA(r=0.9, g=0.6, b=0.2, a=1.0),
                 )

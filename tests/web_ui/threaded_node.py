@@ -46,7 +46,9 @@ class ThreadedNode:
 
     def _publisher(self, topic: str, msg: Message) -> Any:
         if topic not in self._publishers:
-            self._publishers[topic] = self._call(lambda: self.node.create_publisher(type(msg), topic, 100))
+            self._publishers[topic] = self._call(
+                lambda: self.node.create_publisher(type(msg), topic, 100)
+            )
         return self._publishers[topic]
 
     def publish(self, topic: str, msg: Message) -> None:

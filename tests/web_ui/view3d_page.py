@@ -31,11 +31,16 @@ def display(page: Any, topic: str) -> dict[str, Any] | None:
 
 def wait_view(page: Any, condition: str, timeout_ms: int = WAIT_MS) -> dict[str, Any]:
     """Wait until ``condition`` (JS, with ``v`` the view's snapshot) holds; returns the snapshot."""
-    page.wait_for_function(f"(() => {{ const v = window.skydeck.view3d(); return !!v && ({condition}); }})()", timeout=timeout_ms)
+    page.wait_for_function(
+        f"(() => {{ const v = window.skydeck.view3d(); return !!v && ({condition}); }})()",
+        timeout=timeout_ms,
+    )
     return view(page)
 
 
-def wait_display(page: Any, topic: str, condition: str, timeout_ms: int = WAIT_MS) -> dict[str, Any]:
+def wait_display(
+    page: Any, topic: str, condition: str, timeout_ms: int = WAIT_MS
+) -> dict[str, Any]:
     """Wait until the display of ``topic`` satisfies ``condition`` (JS, with ``d`` the display)."""
     page.wait_for_function(
         "(() => { const v = window.skydeck.view3d(); const d = v && v.displays.find((x) => x.topic === "
@@ -50,7 +55,9 @@ def wait_display(page: Any, topic: str, condition: str, timeout_ms: int = WAIT_M
 
 def add_by_topic(page: Any, topic: str, color: str | None = None) -> None:
     """Pick ``topic`` in the "add by topic" list (waiting for it to be offered) and add it."""
-    page.wait_for_selector(f"#view3d-add-select option[value={json.dumps(topic)}]", state="attached", timeout=WAIT_MS)
+    page.wait_for_selector(
+        f"#view3d-add-select option[value={json.dumps(topic)}]", state="attached", timeout=WAIT_MS
+    )
     page.select_option("#view3d-add-select", topic)
     if color:
         page.fill("#view3d-add-color", color)

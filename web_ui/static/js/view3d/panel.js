@@ -99,7 +99,8 @@ export class DisplaysPanel {
     const visible = element("input", { type: "checkbox", checked: this.view.scene.grid.visible, title: "show" });
     visible.dataset.action = "visible";
     visible.addEventListener("change", () => this.view.setGridVisible(visible.checked));
-    li.append(element("div", { className: "display-head" }, visible, element("span", { className: "display-name" }, "Grid"), element("span", { className: "dim small-text" }, "1 m cells, fixed frame")));
+    const name = element("span", { className: "display-name" }, "Grid");
+    li.append(element("div", { className: "display-head" }, visible, name, element("span", { className: "dim small-text" }, "1 m cells")));
     return li;
   }
 

@@ -222,7 +222,8 @@ export class TfTree {
     out.premultiply(targetToCommon.invert());
     const clockNote =
       outside > CLOCK_MISMATCH_S
-        ? `the stamp is ${outside.toFixed(1)} s outside the transforms' times (an old message, or another clock?): drawn with the latest transforms`
+        ? `the stamp is ${outside.toFixed(1)} s outside the transforms' times (an old message, or another clock?): ` +
+          "drawn with the latest transforms"
         : "";
     return { matrix: toCommon, clockNote, ahead };
   }

@@ -57,7 +57,9 @@ export class Display {
       mode: "subscribe",
       onMessage: (msg) => this.receive(msg),
       onStatus: ({ state, code, reason }) => {
-        if (state === "closed" && code !== 1000) this.setStatus("Topic", "error", `connection closed (${code}${reason ? `: ${reason}` : ""}); reconnecting…`);
+        if (state === "closed" && code !== 1000) {
+          this.setStatus("Topic", "error", `connection closed (${code}${reason ? `: ${reason}` : ""}); reconnecting…`);
+        }
         else if (state === "open" && !this.received) this.setStatus("Topic", "warn", "no messages received yet");
       },
     }).open();

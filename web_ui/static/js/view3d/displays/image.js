@@ -80,7 +80,9 @@ export class ImageDisplay extends Display {
 
   _showRaw(msg) {
     const { width, height, step, encoding } = msg;
-    if (!Number.isInteger(width) || !Number.isInteger(height) || width <= 0 || height <= 0) throw new BadData("width and height must be positive");
+    if (!Number.isInteger(width) || !Number.isInteger(height) || width <= 0 || height <= 0) {
+      throw new BadData("width and height must be positive");
+    }
     if (width * height > MAX_PIXELS) throw new BadData(`${width}x${height} is too large to show`);
     const known = ENCODINGS[encoding];
     if (!known) throw new BadData(`encoding "${encoding}" is not shown (${Object.keys(ENCODINGS).join(", ")})`);

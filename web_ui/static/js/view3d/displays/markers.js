@@ -248,7 +248,9 @@ export class MarkerDisplay extends Display {
     for (const [key, entry] of this.objects) {
       if (entry.failed || (entry.holder && !entry.holder.children[0].visible)) continue;
       const [ns, id] = [key.slice(0, key.lastIndexOf("/")), Number(key.slice(key.lastIndexOf("/") + 1))];
-      const position = entry.batch ? entry.batch.positionOf(key).applyMatrix4(this.root.matrixWorld).toArray().map(round) : worldPoint(entry.holder, _origin);
+      const position = entry.batch
+        ? entry.batch.positionOf(key).applyMatrix4(this.root.matrixWorld).toArray().map(round)
+        : worldPoint(entry.holder, _origin);
       markers.push({ ns, id, type: MARKER_TYPES[entry.type], position, batched: !!entry.batch });
     }
     return { objects: markers.length, markers, points: markers.map((m) => m.position) };
