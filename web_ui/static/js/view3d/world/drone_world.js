@@ -65,7 +65,14 @@ export class DroneWorld {
     this.drone = droneModel();
     this.drone.matrixAutoUpdate = false;
     this.drone.visible = false;
-    this.root.add(ground, outline, this.boxes, this.drone);
+    // A line from the drone down to the ground: height is hard to judge in a perspective view.
+    this.dropLine = new THREE.Line(
+      new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(), new THREE.Vector3()]),
+      new THREE.LineDashedMaterial({ color: COLORS.drone, dashSize: 0.15, gapSize: 0.1 }),
+    );
+    this.dropLine.frustumCulled = false;
+    this.dropLine.visible = false;
+    this.root.add(ground, outline, this.boxes, this.drone, this.dropLine);
   }
 
   start() {
@@ -95,6 +102,11 @@ export class DroneWorld {
       setPoseMatrix(this.drone.matrix, pose.pose, "/drone/pose pose");
       this.drone.matrixWorldNeedsUpdate = true;
       this.drone.visible = true;
+      const { x, y, z } = pose.pose.position;
+      this.dropLine.geometry.attributes.position.array.set([x, y, z, x, y, 0]);
+      this.dropLine.geometry.attributes.position.needsUpdate = true;
+      this.dropLine.computeLineDistances();
+      this.dropLine.visible = z > 0.2;
       changed = true;
     }
     if (boxes) {
