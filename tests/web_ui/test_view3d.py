@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import urllib.request
 from collections.abc import Iterator
 from pathlib import Path
@@ -37,7 +38,7 @@ from shared_models.sensor_msgs import Image
 from shared_models.std_msgs import ColorRGBA, Header
 from shared_models.tf2_msgs import TFMessage
 from shared_models.visualization_msgs import Marker, MarkerArray
-from tests.web_ui.system import System
+from tests.web_ui.system import REPO, System
 from tests.web_ui.threaded_node import ThreadedNode
 from tests.web_ui.view3d_page import (
     add_by_topic,
@@ -527,4 +528,64 @@ def test_displays_fixed_frame_and_camera_survive_a_reload_and_a_file(
     )
     assert 'no display for type "std_msgs/msg/String"' in page.inner_text("#view3d-file-result")
     assert len(view(page)["displays"]) == 2
+    assert recorder.errors == []
+
+
+def test_screenshot_of_the_drone_world_in_3d(
+    dashboard, system: System, test_node: ThreadedNode, tmp_path: Path
+) -> None:  # type: ignore[no-untyped-def]
+    """The docs' picture (docs/img/view3d_drone.png with SKYDECK_UPDATE_SCREENSHOTS=1): the drone
+    flying among the boxes, their pose arrows, markers naming them and a line through them."""
+    page, recorder = dashboard
+    page.set_viewport_size({"width": 1600, "height": 1100})
+    open_3d(page)
+    boxes = get_latest(system, "/simulator/boxes")["poses"]
+    centres = [Point(x=b["position"]["x"], y=b["position"]["y"], z=2.6) for b in boxes]  # type: ignore[index]
+    labels = [
+        marker(
+            "TEXT_VIEW_FACING",
+            i,
+            ns="names",
+            pose=Pose(position=c),
+            scale=Vector3(z=0.9),
+            text=f"box {i}",
+        )
+        for i, c in enumerate(centres)
+    ]
+    route = marker(
+        "LINE_STRIP", 100, ns="route", pose=Pose(), points=[Point(x=0.0, y=0.0, z=3.0), *centres]
+    )
+    route.color = ColorRGBA(r=1.0, g=0.72, b=0.3, a=1.0)
+    test_node.publish_every("/workshop_markers", lambda: MarkerArray(markers=[*labels, route]), 0.5)
+    try:
+        add_by_topic(page, "/simulator/boxes", color="#4dd0e1")
+        add_by_topic(page, "/drone/pose", color="#ff5fd2")
+        add_by_topic(page, "/workshop_markers")
+        add_by_topic(page, "/simulator/camera")
+        wait_display(page, "/workshop_markers", f"d.objects === {len(labels) + 1}")
+        fly = urllib.request.Request(
+            system.url + "/control/fly",
+            data=json.dumps({"x": centres[0].x, "y": centres[0].y}).encode(),
+            method="POST",
+            headers={"Content-Type": "application/json"},
+        )
+        with urllib.request.urlopen(fly, timeout=10) as reply:
+            assert json.loads(reply.read())["success"] is True, (
+                "the drone is airborne since the orbit test"
+            )
+        page.click("#view3d-reset")
+        page.wait_for_function("window.skydeck.view3d().world.drone.drone[2] > 2")
+        wait_display(page, "/simulator/camera", "d.frames > 1")
+        page.mouse.move(1000, 500)
+        for _ in range(3):
+            page.mouse.wheel(0, -250)
+        screenshot = (
+            REPO / "docs" / "img" / "view3d_drone.png"
+            if os.environ.get("SKYDECK_UPDATE_SCREENSHOTS") == "1"
+            else tmp_path / "view3d_drone.png"
+        )
+        page.locator("#map-panel").screenshot(path=str(screenshot))
+    finally:
+        test_node.stop("/workshop_markers")
+    assert screenshot.stat().st_size > 10_000
     assert recorder.errors == []

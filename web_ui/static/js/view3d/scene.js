@@ -9,6 +9,17 @@ import { disposeObject, makeAxes } from "./shapes.js";
 
 const STATS_FRAMES = 600; // about 10 s of frames at 60 Hz
 
+/** Whether WebGL runs on a software rasteriser (no GPU: SwiftShader, llvmpipe), where
+ * antialiasing costs a third of the frame rate; it is turned off there. */
+function softwareRendering() {
+  const gl = document.createElement("canvas").getContext("webgl2");
+  if (!gl) return false;
+  const info = gl.getExtension("WEBGL_debug_renderer_info");
+  const name = String(gl.getParameter(info ? info.UNMASKED_RENDERER_WEBGL : gl.RENDERER));
+  gl.getExtension("WEBGL_lose_context")?.loseContext();
+  return /swiftshader|llvmpipe|softpipe|software/i.test(name);
+}
+
 /** Timing of the last frames: the interval between animation frames, and in each drawn frame our
  * work: applying data to the scene (update) and three.js issuing the draw (draw). */
 class FrameStats {
@@ -72,7 +83,8 @@ export class Scene3D {
   constructor(canvas, { onTick }) {
     this.canvas = canvas;
     this.onTick = onTick;
-    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: true });
+    this.software = softwareRendering();
+    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: !this.software });
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
     this.scene = new THREE.Scene();
     this.scene.background = new THREE.Color(0x0e1319);

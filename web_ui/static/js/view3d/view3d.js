@@ -264,6 +264,7 @@ export class View3D {
       grid: this.scene.grid.visible,
       displays: [...this.displays.values()].map((d) => d.snapshot()),
       frameStats: this.scene.stats.summary(statsFrames),
+      softwareRendering: this.scene.software,
     };
   }
 }

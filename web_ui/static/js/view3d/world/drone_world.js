@@ -49,7 +49,7 @@ export class DroneWorld {
 
   _build() {
     const half = this.arena.fly_half_size_m;
-    const ground = new THREE.Mesh(new THREE.PlaneGeometry(2 * half, 2 * half), new THREE.MeshLambertMaterial({ color: COLORS.ground }));
+    const ground = new THREE.Mesh(new THREE.PlaneGeometry(2 * half, 2 * half), new THREE.MeshBasicMaterial({ color: COLORS.ground }));
     ground.position.z = -0.02; // under the grid, which lies at z = 0 of the fixed frame
     const outline = new THREE.LineLoop(
       new THREE.BufferGeometry().setFromPoints([
