@@ -1,11 +1,13 @@
 """A robot for the 3D view's browser tests, as a real node: the robot world's topics and frames.
 
-It drives a known circle in an 8 m x 8 m room (walls at x, y = +-4 m) and publishes what the
-robot world does: ``/odom`` (odom -> base_link, 20 Hz), ``/tf`` (the same transform) and
-``/tf_static`` (base_link -> base_laser_link, latched), and ``/scan`` (360 beams, ``ranges[0]``
-straight ahead, counter-clockwise, 5 Hz, 0.0 where no wall is within 5 m). Poses and ranges are
-pure functions of the stamp (``pose_at``, ``scan_at``), so a test can tell where every drawn
-point must be. Run it with ``skydeck run tests/web_ui/robot_stand_in.py``.
+It drives a known circle in an 8 m x 8 m room (walls at x, y = +-4 m in ``map``) and publishes
+what the robot world does: ``/odom`` (odom -> base_link, 20 Hz), ``/tf`` (the same transform),
+``/tf_static`` (map -> odom, where odometry started, and base_link -> base_laser_link; latched),
+``/scan`` (360 beams, ``ranges[0]`` straight ahead, counter-clockwise, 5 Hz, 0.0 where no wall
+is within 5 m), and the simulator's ``/simulator/obstacles`` (the walls as CUBE markers in
+``map``, latched) and ``/simulator/people`` (one person standing still, which this scan does
+not see). Poses and ranges are pure functions of the stamp (``pose_at``, ``scan_at``), so a test
+can tell where every drawn point must be. Run it with ``skydeck run tests/web_ui/robot_stand_in.py``.
 """
 
 from __future__ import annotations
@@ -15,14 +17,26 @@ import time
 
 from services.runtime import Node, spin
 from shared_models.builtin_interfaces import Time
-from shared_models.geometry_msgs import Quaternion, Transform, TransformStamped, Vector3
+from shared_models.geometry_msgs import (
+    Point,
+    Pose,
+    PoseArray,
+    Quaternion,
+    Transform,
+    TransformStamped,
+    Vector3,
+)
 from shared_models.nav_msgs import Odometry
 from shared_models.sensor_msgs import LaserScan
-from shared_models.std_msgs import Header
+from shared_models.std_msgs import ColorRGBA, Header
 from shared_models.tf2_msgs import TFMessage
+from shared_models.visualization_msgs import Marker, MarkerArray
 
 WALL_M = 4.0
+WALL_HEIGHT_M = 0.5
+ODOM_IN_MAP = (0.3, -0.2, 0.25)  # map -> odom: x, y, yaw
 LASER_OFFSET = (0.1, 0.0, 0.1)  # base_link -> base_laser_link
+PERSON = (-2.0, 2.5, math.pi)  # in map: x, y, yaw
 CIRCLE_CENTRE = (1.0, -0.5)
 CIRCLE_RADIUS_M = 0.5
 TURN_RATE = 0.3  # rad/s around the circle: 0.15 m/s
@@ -39,9 +53,16 @@ def pose_at(t: float) -> tuple[float, float, float]:
     return x, y, angle + math.pi / 2
 
 
+def odom_to_map(x: float, y: float, yaw: float = 0.0) -> tuple[float, float, float]:
+    """A pose (x, y, yaw) in odom, in map."""
+    ox, oy, oyaw = ODOM_IN_MAP
+    c, s = math.cos(oyaw), math.sin(oyaw)
+    return ox + c * x - s * y, oy + s * x + c * y, oyaw + yaw
+
+
 def laser_at(t: float) -> tuple[float, float, float]:
-    """(x, y, yaw) of base_laser_link in odom at time ``t``."""
-    x, y, yaw = pose_at(t)
+    """(x, y, yaw) of base_laser_link in map at time ``t``."""
+    x, y, yaw = odom_to_map(*pose_at(t))
     return x + LASER_OFFSET[0] * math.cos(yaw), y + LASER_OFFSET[0] * math.sin(yaw), yaw
 
 
@@ -66,6 +87,27 @@ def scan_at(t: float) -> list[float]:
     return ranges
 
 
+# The walls' centres and sizes (x, y, length along x, along y): 0.1 m thick, just outside +-4 m.
+WALLS = [
+    (WALL_M + 0.05, 0.0, 0.1, 2 * WALL_M + 0.2),
+    (-WALL_M - 0.05, 0.0, 0.1, 2 * WALL_M + 0.2),
+    (0.0, WALL_M + 0.05, 2 * WALL_M + 0.2, 0.1),
+    (0.0, -WALL_M - 0.05, 2 * WALL_M + 0.2, 0.1),
+]
+
+
+def _wall(index: int, x: float, y: float, size_x: float, size_y: float) -> Marker:
+    return Marker(
+        header=Header(frame_id="map"),
+        ns="walls",
+        id=index,
+        type=Marker.CUBE,
+        pose=Pose(position=Point(x=x, y=y, z=WALL_HEIGHT_M / 2)),
+        scale=Vector3(x=size_x, y=size_y, z=WALL_HEIGHT_M),
+        color=ColorRGBA(r=0.92, g=0.92, b=0.95, a=1.0),
+    )
+
+
 def _stamp(t: float) -> Time:
     sec = math.floor(t)
     return Time(sec=sec, nanosec=int((t - sec) * 1e9))
@@ -76,7 +118,7 @@ def _yaw(yaw: float) -> Quaternion:
 
 
 class RobotStandIn(Node):
-    """Publishes the robot world's /odom, /tf, /tf_static and /scan for a robot on a circle."""
+    """Publishes the robot world's topics and frames for a robot on a circle."""
 
     def __init__(self) -> None:
         super().__init__("robot_stand_in")
@@ -84,20 +126,34 @@ class RobotStandIn(Node):
         self.tf = self.create_publisher(TFMessage, "/tf", 100)
         self.tf_static = self.create_publisher(TFMessage, "/tf_static", 10, latched=True)
         self.scan = self.create_publisher(LaserScan, "/scan", 10)
+        self.obstacles = self.create_publisher(MarkerArray, "/simulator/obstacles", 1, latched=True)
+        self.people = self.create_publisher(PoseArray, "/simulator/people", 10)
         self.create_timer(0.05, self.publish_pose)
         self.create_timer(0.2, self.publish_scan)
         self.create_timer(1.0, self.publish_static)  # latched; again each second for late readers
         self.publish_static()
 
     def publish_static(self) -> None:
+        stamp = _stamp(time.time())
+        odom = TransformStamped(
+            header=Header(stamp=stamp, frame_id="map"),
+            child_frame_id="odom",
+            transform=Transform(
+                translation=Vector3(x=ODOM_IN_MAP[0], y=ODOM_IN_MAP[1]),
+                rotation=_yaw(ODOM_IN_MAP[2]),
+            ),
+        )
         laser = TransformStamped(
-            header=Header(stamp=_stamp(time.time()), frame_id="base_link"),
+            header=Header(stamp=stamp, frame_id="base_link"),
             child_frame_id="base_laser_link",
             transform=Transform(
                 translation=Vector3(x=LASER_OFFSET[0], y=LASER_OFFSET[1], z=LASER_OFFSET[2])
             ),
         )
-        self.tf_static.publish(TFMessage(transforms=[laser]))
+        self.tf_static.publish(TFMessage(transforms=[odom, laser]))
+        self.obstacles.publish(MarkerArray(markers=[_wall(i, *w) for i, w in enumerate(WALLS)]))
+        person = Pose(position=Point(x=PERSON[0], y=PERSON[1]), orientation=_yaw(PERSON[2]))
+        self.people.publish(PoseArray(header=Header(stamp=stamp, frame_id="map"), poses=[person]))
 
     def publish_pose(self) -> None:
         t = time.time()

@@ -9,7 +9,9 @@ The robot is ``robot_stand_in.py``, a real node publishing the robot world's top
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Iterator
+from pathlib import Path
 
 import pytest
 
@@ -18,7 +20,7 @@ from shared_models.std_msgs import ColorRGBA, Header
 from shared_models.visualization_msgs import Marker, MarkerArray
 from tests.conftest import free_port, free_port_block
 from tests.web_ui import robot_stand_in as robot
-from tests.web_ui.system import System
+from tests.web_ui.system import REPO, System
 from tests.web_ui.threaded_node import ThreadedNode
 from tests.web_ui.view3d_page import add_by_topic, open_3d, view, wait_display, wait_view
 
@@ -29,7 +31,7 @@ WALL_TOLERANCE_M = 0.02
 
 @pytest.fixture(scope="module")
 def system() -> Iterator[System]:
-    """The core and the robot (this module's own system: no drone world)."""
+    """The core and the robot stand-in (this module's own system: no drone world)."""
     base = free_port_block(5)
     running = System(base)
     try:
@@ -51,88 +53,104 @@ def dashboard(system: System, browser: object) -> Iterator[tuple[object, object]
     recorder.attach(page)
     page.goto(system.url + "/")
     open_3d(page)
-    wait_view(page, "v.frames.length >= 3 && v.world.robot.present")
+    wait_view(page, "v.frames.length >= 4 && v.world.robot.present")
     yield page, recorder
     context.close()
 
 
 def off_the_walls(point: list[float]) -> float:
-    """How far (x, y) is from the nearest wall of the room."""
+    """How far (x, y) in map is from the nearest wall of the room."""
     return min(abs(robot.WALL_M - abs(point[0])), abs(robot.WALL_M - abs(point[1])))
 
 
-def to_odom(point: list[float], t: float) -> list[float]:
-    """A point in base_link at time t, in odom (the robot's pose at t)."""
-    x, y, yaw = robot.pose_at(t)
+def odom_to_map(point: list[float]) -> list[float]:
+    x, y, _ = robot.odom_to_map(point[0], point[1])
+    return [x, y, point[2]]
+
+
+def base_to_map(point: list[float], t: float) -> list[float]:
+    """A point in base_link at time t, in map (through the robot's pose at t)."""
+    x, y, yaw = robot.odom_to_map(*robot.pose_at(t))
     c, s = math.cos(yaw), math.sin(yaw)
     return [x + c * point[0] - s * point[1], y + s * point[0] + c * point[1], point[2]]
 
 
-def test_scan_added_by_topic_draws_points_at_the_walls(dashboard) -> None:  # type: ignore[no-untyped-def]
+def next_scan(page, after: float, fixed_frame: str) -> dict[str, object]:  # type: ignore[no-untyped-def]
+    """The first scan drawn in `fixed_frame` that was taken after `after`."""
+    return wait_display(page, "/scan", f"v.fixedFrame === '{fixed_frame}' && d.stamp > {after}")
+
+
+def test_the_robot_world_and_its_frames(dashboard) -> None:  # type: ignore[no-untyped-def]
     page, recorder = dashboard
-    v = view(page)
-    assert v["fixedFrame"] == "odom", "the default fixed frame is the root of the robot's tree"
+    v = wait_view(page, "v.world.robot.obstacles.length === 4 && v.world.robot.people.length === 1")
+    assert v["fixedFrame"] == "map", "the default fixed frame is the root of the tree"
     assert {f["frame"]: f["parent"] for f in v["frames"]} == {
-        "odom": None,
+        "map": None,
+        "odom": "map",
         "base_link": "odom",
         "base_laser_link": "base_link",
     }
+    walls = sorted(tuple(w["position"][:2]) for w in v["world"]["robot"]["obstacles"])
+    assert walls == sorted((x, y) for x, y, _, _ in robot.WALLS)
+    assert math.dist(v["world"]["robot"]["people"][0][:2], robot.PERSON[:2]) < 1e-6
+    assert v["world"]["status"]["level"] == "ok", v["world"]["status"]
+    assert recorder.errors == []
+
+
+def test_scan_added_by_topic_draws_points_at_the_walls(dashboard) -> None:  # type: ignore[no-untyped-def]
+    page, recorder = dashboard
     add_by_topic(page, "/scan")
     stamp = 0.0
     for _ in range(3):  # three scans in a row, taken as the robot drives and turns
-        scan = wait_display(page, "/scan", f"d.stamp > {stamp} && d.points.length > 100")
+        scan = next_scan(page, stamp, "map")
         stamp = scan["stamp"]
         expected = [r for r in robot.scan_at(stamp) if r > 0]
-        assert len(scan["points"]) == len(expected), (
-            "one point per beam with a return (0.0 is no return)"
-        )
+        assert len(scan["points"]) == len(expected), "one point per beam with a return"
         worst = max(off_the_walls(p) for p in scan["points"])
         assert worst < WALL_TOLERANCE_M, f"a scan point is {worst:.3f} m off the walls"
-        assert all(abs(p[2] - robot.LASER_OFFSET[2]) < 1e-3 for p in scan["points"]), (
-            "at the laser's height"
-        )
+        height = robot.LASER_OFFSET[2]
+        assert all(abs(p[2] - height) < 1e-3 for p in scan["points"]), "at the laser's height"
         assert scan["status"]["level"] == "ok"
     assert recorder.errors == []
 
 
-def test_fixed_frame_base_link_keeps_the_scan_with_the_robot(dashboard) -> None:  # type: ignore[no-untyped-def]
+def test_fixed_frame_odom_then_base_link_keeps_the_scan_with_the_robot(dashboard) -> None:  # type: ignore[no-untyped-def]
     page, _ = dashboard
     add_by_topic(page, "/scan")
     add_by_topic(page, "/odom")
-    wait_display(page, "/scan", "d.stamp !== null")
-    moved_from = view(page)["world"]["robot"]["robot"]
+    page.select_option("#view3d-fixed-frame", "odom")
+    stamp = view(page)["displays"][0]["stamp"] or 0.0
+    for _ in range(2):
+        scan = next_scan(page, stamp, "odom")
+        stamp = scan["stamp"]
+        worst = max(off_the_walls(odom_to_map(p)) for p in scan["points"])
+        assert worst < WALL_TOLERANCE_M, f"in odom, the scan is {worst:.3f} m off the walls"
+    in_odom = view(page)["world"]["robot"]["robot"]
     page.select_option("#view3d-fixed-frame", "base_link")
-    first = wait_view(page, "v.fixedFrame === 'base_link'")
-    switched_at = next(d for d in first["displays"] if d["topic"] == "/scan")["stamp"]
     for _ in range(3):  # three scans in a row, the robot driving on all the while
-        scan = wait_display(
-            page, "/scan", f"v.fixedFrame === 'base_link' && d.stamp > {switched_at}"
-        )
-        switched_at = scan["stamp"]
+        scan = next_scan(page, stamp, "base_link")
+        stamp = scan["stamp"]
         v = view(page)
         assert v["world"]["robot"]["robot"] == [0, 0, 0], "in base_link the robot is at the origin"
         assert v["world"]["robot"]["laser"] == list(robot.LASER_OFFSET)
-        worst = max(off_the_walls(to_odom(p, scan["stamp"])) for p in scan["points"])
-        assert worst < WALL_TOLERANCE_M, (
-            f"the scan is {worst:.3f} m off the robot's view of the walls"
-        )
+        worst = max(off_the_walls(base_to_map(p, stamp)) for p in scan["points"])
+        assert worst < WALL_TOLERANCE_M, f"in base_link, the scan is {worst:.3f} m off the walls"
         nearest = min(math.dist(p[:2], robot.LASER_OFFSET[:2]) for p in scan["points"])
         assert nearest >= robot.RANGE_MIN_M
     odom = wait_display(page, "/odom", "d.objects === 1")
     assert math.dist(odom["points"][0], [0, 0, 0]) < 0.05, "the odometry arrow is on the robot"
-    assert odom["trail"] > 0
-    back = page.select_option("#view3d-fixed-frame", "odom")
-    assert back == ["odom"]
+    page.select_option("#view3d-fixed-frame", "odom")
     v = wait_view(page, "v.fixedFrame === 'odom'")
-    assert math.dist(v["world"]["robot"]["robot"], moved_from) > 0.01, "in odom the robot drives on"
+    assert math.dist(v["world"]["robot"]["robot"], in_odom) > 0.01, "in odom the robot drives on"
 
 
 def test_tf_display_draws_each_frame_with_its_name(dashboard) -> None:  # type: ignore[no-untyped-def]
     page, _ = dashboard
     add_by_topic(page, "/tf")
-    d = wait_display(page, "/tf", "d.objects === 3")
+    d = wait_display(page, "/tf", "d.objects === 4")
     where = {f["frame"]: f["position"] for f in d["frames"]}
-    assert where["odom"] == [0, 0, 0]
+    assert where["map"] == [0, 0, 0]
+    assert where["odom"] == [*robot.ODOM_IN_MAP[:2], 0]
     base, laser = where["base_link"], where["base_laser_link"]
     assert abs(math.dist(base[:2], laser[:2]) - robot.LASER_OFFSET[0]) < 1e-3
     assert abs(laser[2] - base[2] - robot.LASER_OFFSET[2]) < 1e-3
@@ -141,7 +159,7 @@ def test_tf_display_draws_each_frame_with_its_name(dashboard) -> None:  # type: 
         "![...document.querySelectorAll('#view3d-add-select option')].some(o => o.value === '/tf_static')"
     )
     names = page.evaluate("window.skydeck.view3d().displays[0].frames.map(f => f.frame)")
-    assert sorted(names) == ["base_laser_link", "base_link", "odom"]
+    assert sorted(names) == ["base_laser_link", "base_link", "map", "odom"]
 
 
 def test_odometry_arrow_and_trail(dashboard) -> None:  # type: ignore[no-untyped-def]
@@ -152,16 +170,18 @@ def test_odometry_arrow_and_trail(dashboard) -> None:  # type: ignore[no-untyped
     assert math.dist(d["points"][0][:2], robot_at[:2]) < 0.05, (
         "the arrow is where TF puts base_link"
     )
-    centre = robot.CIRCLE_CENTRE
+    centre = robot.odom_to_map(*robot.CIRCLE_CENTRE)[:2]
     assert abs(math.dist(d["points"][0][:2], centre) - robot.CIRCLE_RADIUS_M) < 0.01
 
 
 def test_seed_my_point_shows_up_by_add_by_topic(dashboard, my_point) -> None:  # type: ignore[no-untyped-def]
-    """The second seed: run send_message (PointStamped (1, 2, 0) in odom), add /my_point by topic."""
+    """The second seed: run send_message (PointStamped (1, 2, 0) in odom), add /my_point by topic:
+    drawn where odom's (1, 2, 0) is, with no other step."""
     page, _ = dashboard
     add_by_topic(page, "/my_point")
     d = wait_display(page, "/my_point", "d.objects === 1")
-    assert d["points"] == [[1, 2, 0]] and d["status"]["level"] == "ok"
+    assert math.dist(d["points"][0], odom_to_map([1.0, 2.0, 0.0])) < 1e-3
+    assert d["status"]["level"] == "ok"
 
 
 def test_frame_time_with_a_scan_odometry_and_500_markers(dashboard, system: System, capsys) -> None:  # type: ignore[no-untyped-def]
@@ -227,4 +247,33 @@ def test_frame_time_with_a_scan_odometry_and_500_markers(dashboard, system: Syst
         assert applied <= ticks, "never more than one message applied per frame"
     markers = next(d for d in end["displays"] if d["topic"] == "/load_markers")
     assert markers["objects"] == 500 and markers["status"]["level"] == "ok"
+    assert recorder.errors == []
+
+
+def test_screenshot_of_the_robot_world_in_3d(dashboard, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    """The docs' picture (docs/img/view3d_robot.png with SKYDECK_UPDATE_SCREENSHOTS=1): the room,
+    the robot with its scan at the walls, its odometry trail and its frames."""
+    page, recorder = dashboard
+    page.set_viewport_size({"width": 1600, "height": 1100})
+    add_by_topic(page, "/scan")
+    add_by_topic(page, "/odom", color="#ff5fd2")
+    add_by_topic(page, "/tf")
+    wait_display(page, "/odom", "d.trail > 40")
+    wait_display(page, "/scan", "d.objects === 1")
+    page.click("#view3d-reset")
+    page.click("#view3d-follow")
+    box = page.locator("#view3d-canvas").bounding_box()
+    page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+    for _ in range(4):
+        page.mouse.wheel(0, -200)
+    wait_view(
+        page,
+        "v.camera.follow && Math.hypot(v.camera.target[0] - v.world.robot.robot[0], v.camera.target[1] - v.world.robot.robot[1]) < 0.1",
+    )
+    update = os.environ.get("SKYDECK_UPDATE_SCREENSHOTS") == "1"
+    screenshot = (
+        REPO / "docs" / "img" / "view3d_robot.png" if update else tmp_path / "view3d_robot.png"
+    )
+    page.locator("#map-panel").screenshot(path=str(screenshot))
+    assert screenshot.stat().st_size > 10_000
     assert recorder.errors == []

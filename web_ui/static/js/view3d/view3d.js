@@ -242,6 +242,7 @@ export class View3D {
     }
     const extent = this.world.extent();
     this.scene.setGrid(Math.ceil(extent * 2.5), 1);
+    this.scene.fixedAxes.scale.setScalar(Math.max(0.3, extent / 10));
     if (ctx.tfStructureChanged || ctx.fixedFrameChanged) {
       this.panel.renderFrames(tf.frames(), this.fixedFrameChoice, fixedFrame);
     }

@@ -14,10 +14,11 @@ export class SimWorld {
     this.statuses = new StatusList();
     this.root = new THREE.Group();
     this.drone = worlds.drone ? new DroneWorld(worlds.drone, tf) : null;
-    this.robot = new RobotWorld(tf);
+    this.robot = new RobotWorld(worlds.robot, tf, { tf });
     if (this.drone) this.root.add(this.drone.root);
     this.root.add(this.robot.root);
-    this.statuses.set("World", "warn", "no simulator topics yet (/drone/pose, /simulator/boxes, base_link in TF)");
+    this.statuses.set("World", "warn", "no simulator topics yet (/drone/pose, /simulator/boxes, /simulator/obstacles, base_link in TF)");
+    this._roomVersion = -1;
   }
 
   start() {
@@ -51,10 +52,27 @@ export class SimWorld {
         changed = true;
       }
     }
-    changed = this.robot.update(ctx) || changed;
-    if (this.robot.present) this.statuses.set("Robot", "ok", "the robot at base_link");
+    try {
+      changed = this.robot.update(ctx) || changed;
+      this.statuses.clear("Room data");
+    } catch (error) {
+      if (!(error instanceof BadData)) throw error;
+      this.statuses.set("Room data", "error", `skipped: ${error.message}`);
+    }
+    this._roomStatus();
     if ((drone && drone.present) || this.robot.present) this.statuses.clear("World");
     return changed;
+  }
+
+  /** The room's markers as one line of the World's status: the worst of their entries. */
+  _roomStatus() {
+    const room = this.robot.obstacles;
+    if (room.statuses.version === this._roomVersion) return;
+    this._roomVersion = room.statuses.version;
+    if (!room.received) return;
+    const { level, entries } = room.status();
+    const worst = entries.find((e) => e.level === level && e.key !== "Topic");
+    this.statuses.set("Room", level, level === "ok" || !worst ? "walls and boxes of /simulator/obstacles" : `${worst.key}: ${worst.text}`);
   }
 
   setVisible(visible) {
