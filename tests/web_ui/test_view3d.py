@@ -574,11 +574,18 @@ def test_screenshot_of_the_drone_world_in_3d(
                 "the drone is airborne since the orbit test"
             )
         page.click("#view3d-reset")
+        page.click("#view3d-follow")
         page.wait_for_function("window.skydeck.view3d().world.drone.drone[2] > 2")
         wait_display(page, "/simulator/camera", "d.frames > 1")
-        page.mouse.move(1000, 500)
-        for _ in range(3):
+        box = page.locator("#view3d-canvas").bounding_box()
+        page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+        for _ in range(6):
             page.mouse.wheel(0, -250)
+        # Flying to box 0: the drone tilts; the view follows it.
+        wait_view(
+            page,
+            "Math.hypot(v.camera.target[0] - v.world.drone.drone[0], v.camera.target[1] - v.world.drone.drone[1]) < 0.2",
+        )
         screenshot = (
             REPO / "docs" / "img" / "view3d_drone.png"
             if os.environ.get("SKYDECK_UPDATE_SCREENSHOTS") == "1"
