@@ -69,15 +69,21 @@ class Recorder:
         page.on("websocket", lambda websocket: self.urls.append(websocket.url))  # type: ignore[attr-defined]
 
 
-@pytest.fixture
-def dashboard(system: System, browser: object) -> Iterator[tuple[object, Recorder]]:
-    """A fresh page on the dashboard, once it shows the drone's pose."""
+def open_dashboard(browser: object, url: str) -> tuple[object, object, Recorder]:
+    """(context, page, recorder): a fresh browser context on the dashboard at ``url``."""
     context = browser.new_context(viewport={"width": 1440, "height": 900})  # type: ignore[attr-defined]
     page = context.new_page()
     recorder = Recorder()
     recorder.attach(page)
-    page.goto(system.url + "/")
-    page.wait_for_function("window.skydeck && window.skydeck.pose !== null", timeout=20_000)
+    page.goto(url + "/")  # type: ignore[attr-defined]
+    return context, page, recorder
+
+
+@pytest.fixture
+def dashboard(system: System, browser: object) -> Iterator[tuple[object, Recorder]]:
+    """A fresh page on the dashboard, once it shows the drone's pose."""
+    context, page, recorder = open_dashboard(browser, system.url)
+    page.wait_for_function("window.skydeck && window.skydeck.pose !== null", timeout=20_000)  # type: ignore[attr-defined]
     yield page, recorder
     with contextlib.suppress(Exception):
         context.close()

@@ -9,7 +9,6 @@ The robot is ``robot_stand_in.py``, a real node publishing the robot world's top
 from __future__ import annotations
 
 import math
-import os
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -20,9 +19,18 @@ from shared_models.std_msgs import ColorRGBA, Header
 from shared_models.visualization_msgs import Marker, MarkerArray
 from tests.conftest import free_port, free_port_block
 from tests.web_ui import robot_stand_in as robot
-from tests.web_ui.system import REPO, System
+from tests.web_ui.conftest import open_dashboard
+from tests.web_ui.system import System
 from tests.web_ui.threaded_node import ThreadedNode
-from tests.web_ui.view3d_page import add_by_topic, open_3d, view, wait_display, wait_view
+from tests.web_ui.view3d_page import (
+    add_by_topic,
+    follow_and_zoom,
+    open_3d,
+    screenshot_path,
+    view,
+    wait_display,
+    wait_view,
+)
 
 pytestmark = [pytest.mark.browser, pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(120)]
 
@@ -45,13 +53,7 @@ def system() -> Iterator[System]:
 @pytest.fixture
 def dashboard(system: System, browser: object) -> Iterator[tuple[object, object]]:
     """A fresh page on the dashboard's 3D view, once it knows the robot's frames."""
-    from tests.web_ui.conftest import Recorder
-
-    context = browser.new_context(viewport={"width": 1440, "height": 900})  # type: ignore[attr-defined]
-    page = context.new_page()
-    recorder = Recorder()
-    recorder.attach(page)
-    page.goto(system.url + "/")
+    context, page, recorder = open_dashboard(browser, system.url)
     open_3d(page)
     wait_view(page, "v.frames.length >= 4 && v.world.robot.present")
     yield page, recorder
@@ -260,20 +262,8 @@ def test_screenshot_of_the_robot_world_in_3d(dashboard, tmp_path: Path) -> None:
     add_by_topic(page, "/tf")
     wait_display(page, "/odom", "d.trail > 40")
     wait_display(page, "/scan", "d.objects === 1")
-    page.click("#view3d-reset")
-    page.click("#view3d-follow")
-    box = page.locator("#view3d-canvas").bounding_box()
-    page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
-    for _ in range(4):
-        page.mouse.wheel(0, -200)
-    wait_view(
-        page,
-        "v.camera.follow && Math.hypot(v.camera.target[0] - v.world.robot.robot[0], v.camera.target[1] - v.world.robot.robot[1]) < 0.1",
-    )
-    update = os.environ.get("SKYDECK_UPDATE_SCREENSHOTS") == "1"
-    screenshot = (
-        REPO / "docs" / "img" / "view3d_robot.png" if update else tmp_path / "view3d_robot.png"
-    )
+    follow_and_zoom(page, 3, "v.world.robot.robot")
+    screenshot = screenshot_path("view3d_robot.png", tmp_path)
     page.locator("#map-panel").screenshot(path=str(screenshot))
     assert screenshot.stat().st_size > 10_000
     assert recorder.errors == []

@@ -4,7 +4,11 @@ draws through ``window.skydeck.view3d()`` (positions in the fixed frame, read fr
 from __future__ import annotations
 
 import json
+import os
+from pathlib import Path
 from typing import Any
+
+from tests.web_ui.system import REPO
 
 WAIT_MS = 20_000
 
@@ -72,3 +76,28 @@ def row(page: Any, topic: str) -> Any:
 def status_texts(d: dict[str, Any]) -> list[str]:
     """A display's status lines, as the panel shows them ("Key: text")."""
     return [f"{e['key']}: {e['text']}" for e in d["status"]["entries"]]
+
+
+def follow_and_zoom(page: Any, notches: int, followed: str) -> None:
+    """Reset the view, follow the robot (or drone), zoom in ``notches`` wheel steps; wait until the
+    view is centred on ``followed`` (JS: its position in the snapshot ``v``)."""
+    page.click("#view3d-reset")
+    page.click("#view3d-follow")
+    box = page.locator("#view3d-canvas").bounding_box()
+    page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+    for _ in range(notches):
+        page.mouse.wheel(0, -250)
+    wait_view(
+        page,
+        f"v.camera.follow && Math.hypot(v.camera.target[0] - {followed}[0], v.camera.target[1] - {followed}[1]) < 0.2",
+    )
+
+
+def screenshot_path(name: str, tmp_path: Path) -> Path:
+    """docs/img/NAME when SKYDECK_UPDATE_SCREENSHOTS=1 (the docs' pictures are refreshed only on
+    request, so a test run never edits tracked files), else a file in ``tmp_path``."""
+    return (
+        REPO / "docs" / "img" / name
+        if os.environ.get("SKYDECK_UPDATE_SCREENSHOTS") == "1"
+        else tmp_path / name
+    )
