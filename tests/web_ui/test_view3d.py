@@ -54,7 +54,7 @@ from tests.web_ui.view3d_page import (
 pytestmark = [pytest.mark.browser, pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(120)]
 
 # The types the issue asks for, one marker of each.
-MARKER_TYPES = "ARROW CUBE SPHERE CYLINDER LINE_STRIP LINE_LIST POINTS TEXT_VIEW_FACING".split()
+MARKER_TYPES = ["ARROW", "CUBE", "SPHERE", "CYLINDER", "LINE_STRIP", "LINE_LIST", "POINTS", "TEXT_VIEW_FACING"]
 
 
 @pytest.fixture(scope="module")
