@@ -154,7 +154,7 @@ export class Display {
   }
 
   /** The frame and stamp of a message's header; an empty frame is the fixed frame, with a note. */
-  headerFrame(header, ctx) {
+  headerFrame(header) {
     const frame = frameName(header && header.frame_id);
     if (!frame) {
       this.setStatus("Frame", "warn", "the message has no frame_id: drawn in the fixed frame");

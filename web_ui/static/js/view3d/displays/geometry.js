@@ -23,7 +23,7 @@ export class PointDisplay extends Display {
   }
 
   apply(msg, ctx) {
-    const { frame, stamp } = this.headerFrame(msg.header, ctx);
+    const { frame, stamp } = this.headerFrame(msg.header);
     setVector(this.sphere.position, msg.point, "point");
     this.sphere.visible = true;
     this.place(ctx, frame, stamp, this.root);
@@ -87,7 +87,7 @@ class ArrowsDisplay extends Display {
 /** geometry_msgs/PoseStamped: one arrow. */
 export class PoseDisplay extends ArrowsDisplay {
   apply(msg, ctx) {
-    const { frame, stamp } = this.headerFrame(msg.header, ctx);
+    const { frame, stamp } = this.headerFrame(msg.header);
     this.setPoses([msg.pose]);
     this.place(ctx, frame, stamp, this.root);
   }
@@ -99,7 +99,7 @@ export class PoseArrayDisplay extends ArrowsDisplay {
   static options = { length: { ...ArrowsDisplay.options.length, default: 0.5 } };
 
   apply(msg, ctx) {
-    const { frame, stamp } = this.headerFrame(msg.header, ctx);
+    const { frame, stamp } = this.headerFrame(msg.header);
     if (!Array.isArray(msg.poses)) throw new BadData("poses is not a list");
     this.setPoses(msg.poses);
     this.place(ctx, frame, stamp, this.root);
@@ -146,7 +146,7 @@ export class PolygonDisplay extends LineDisplay {
     const stamped = this.type.endsWith("/PolygonStamped");
     let place;
     if (stamped) {
-      place = this.headerFrame(msg.header, ctx);
+      place = this.headerFrame(msg.header);
     } else {
       place = { frame: null, stamp: null };
       this.setStatus("Frame", "ok", "a Polygon has no header: drawn in the fixed frame");
@@ -161,7 +161,7 @@ export class PolygonDisplay extends LineDisplay {
 /** nav_msgs/Path: a line through its poses, all in the path's header frame (as rviz). */
 export class PathDisplay extends LineDisplay {
   apply(msg, ctx) {
-    const { frame, stamp } = this.headerFrame(msg.header, ctx);
+    const { frame, stamp } = this.headerFrame(msg.header);
     if (!Array.isArray(msg.poses)) throw new BadData("poses is not a list");
     this.setVertices(
       msg.poses.map((p) => (p && p.pose ? p.pose.position : null)),

@@ -39,7 +39,7 @@ export class LaserScanDisplay extends Display {
   }
 
   apply(msg, ctx) {
-    const { frame, stamp } = this.headerFrame(msg.header, ctx);
+    const { frame, stamp } = this.headerFrame(msg.header);
     const ranges = msg.ranges;
     if (!Array.isArray(ranges)) throw new BadData("ranges is not a list");
     if (ranges.length > MAX_BEAMS) throw new BadData(`${ranges.length} beams is more than ${MAX_BEAMS}`);
