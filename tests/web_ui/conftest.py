@@ -69,24 +69,25 @@ class Recorder:
         page.on("websocket", lambda websocket: self.urls.append(websocket.url))  # type: ignore[attr-defined]
 
 
-def open_dashboard(browser: object, url: str) -> tuple[object, object, Recorder]:
-    """(context, page, recorder): a fresh browser context on the dashboard at ``url``."""
+@contextlib.contextmanager
+def open_dashboard(browser: object, url: str, ready: str) -> Iterator[tuple[object, Recorder]]:
+    """A fresh page on the dashboard at ``url``, once the JavaScript ``ready`` is true."""
     context = browser.new_context(viewport={"width": 1440, "height": 900})  # type: ignore[attr-defined]
     page = context.new_page()
     recorder = Recorder()
     recorder.attach(page)
-    page.goto(url + "/")  # type: ignore[attr-defined]
-    return context, page, recorder
+    page.goto(url + "/")
+    page.wait_for_function(ready, timeout=20_000)
+    yield page, recorder
+    with contextlib.suppress(Exception):
+        context.close()
 
 
 @pytest.fixture
 def dashboard(system: System, browser: object) -> Iterator[tuple[object, Recorder]]:
     """A fresh page on the dashboard, once it shows the drone's pose."""
-    context, page, recorder = open_dashboard(browser, system.url)
-    page.wait_for_function("window.skydeck && window.skydeck.pose !== null", timeout=20_000)  # type: ignore[attr-defined]
-    yield page, recorder
-    with contextlib.suppress(Exception):
-        context.close()
+    with open_dashboard(browser, system.url, "window.skydeck && window.skydeck.pose !== null") as opened:
+        yield opened
 
 
 @pytest.fixture

@@ -54,11 +54,10 @@ def system() -> Iterator[System]:
 @pytest.fixture
 def dashboard(system: System, browser: object) -> Iterator[tuple[object, object]]:
     """A fresh page on the dashboard's 3D view, once it knows the robot's frames."""
-    context, page, recorder = open_dashboard(browser, system.url)
-    open_3d(page)
-    wait_view(page, "v.frames.length >= 4 && v.world.robot.present")
-    yield page, recorder
-    context.close()
+    with open_dashboard(browser, system.url, "window.skydeck !== undefined") as (page, recorder):
+        open_3d(page)
+        wait_view(page, "v.frames.length >= 4 && v.world.robot.present")
+        yield page, recorder
 
 
 def off_the_walls(point: list[float]) -> float:

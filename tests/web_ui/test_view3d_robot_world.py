@@ -75,11 +75,10 @@ def scans(system: System) -> Iterator[dict[float, dict[str, object]]]:
 
 @pytest.fixture
 def dashboard(system: System, browser: object) -> Iterator[tuple[object, object]]:
-    context, page, recorder = open_dashboard(browser, system.url)
-    open_3d(page)
-    wait_view(page, "v.world.robot.present && v.world.robot.obstacles.length >= 4")
-    yield page, recorder
-    context.close()  # type: ignore[attr-defined]
+    with open_dashboard(browser, system.url, "window.skydeck !== undefined") as (page, recorder):
+        open_3d(page)
+        wait_view(page, "v.world.robot.present && v.world.robot.obstacles.length >= 4")
+        yield page, recorder
 
 
 def beam_points(msg: dict[str, object], laser_z: float) -> list[list[float]]:

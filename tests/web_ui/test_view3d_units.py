@@ -32,11 +32,9 @@ def system() -> Iterator[System]:
 
 @pytest.fixture(scope="module")
 def page(system: System, browser: object) -> Iterator[object]:
-    context, page, recorder = open_dashboard(browser, system.url)
-    page.wait_for_function("window.skydeck !== undefined")  # type: ignore[attr-defined]
-    yield page
-    assert recorder.errors == []
-    context.close()  # type: ignore[attr-defined]
+    with open_dashboard(browser, system.url, "window.skydeck !== undefined") as (page, recorder):
+        yield page
+        assert recorder.errors == []
 
 
 TREE = """
