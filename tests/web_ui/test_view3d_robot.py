@@ -11,7 +11,6 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Iterator
-from pathlib import Path
 
 import pytest
 
@@ -25,9 +24,7 @@ from tests.web_ui.system import System
 from tests.web_ui.threaded_node import ThreadedNode
 from tests.web_ui.view3d_page import (
     add_by_topic,
-    follow_and_zoom,
     open_3d,
-    screenshot_path,
     view,
     wait_display,
     wait_view,
@@ -257,19 +254,3 @@ def test_frame_time_with_a_scan_odometry_and_500_markers(dashboard, system: Syst
     assert markers["objects"] == 500 and markers["status"]["level"] == "ok"
     assert recorder.errors == []
 
-
-def test_screenshot_of_the_robot_world_in_3d(dashboard, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
-    """The docs' picture (docs/img/view3d_robot.png with SKYDECK_UPDATE_SCREENSHOTS=1): the room,
-    the robot with its scan at the walls, its odometry trail and its frames."""
-    page, recorder = dashboard
-    page.set_viewport_size({"width": 1600, "height": 1100})
-    add_by_topic(page, "/scan")
-    add_by_topic(page, "/odom", color="#ff5fd2")
-    add_by_topic(page, "/tf")
-    wait_display(page, "/odom", "d.trail > 40")
-    wait_display(page, "/scan", "d.objects === 1")
-    follow_and_zoom(page, 3, "v.world.robot.robot")
-    screenshot = screenshot_path("view3d_robot.png", tmp_path)
-    page.locator("#map-panel").screenshot(path=str(screenshot))
-    assert screenshot.stat().st_size > 10_000
-    assert recorder.errors == []

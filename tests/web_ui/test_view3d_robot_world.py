@@ -13,14 +13,25 @@ import json
 import math
 import threading
 from collections.abc import Iterator
+from pathlib import Path
 
 import pytest
 from websockets.sync.client import connect
 
+from shared_models.geometry_msgs import Twist, Vector3
 from tests.conftest import free_port_block
 from tests.web_ui.conftest import open_dashboard
 from tests.web_ui.system import System
-from tests.web_ui.view3d_page import add_by_topic, open_3d, view, wait_display, wait_view
+from tests.web_ui.threaded_node import ThreadedNode
+from tests.web_ui.view3d_page import (
+    add_by_topic,
+    follow_and_zoom,
+    open_3d,
+    screenshot_path,
+    view,
+    wait_display,
+    wait_view,
+)
 
 pytest.importorskip("sim_server.robot", reason="the robot world (issue 14) is not in this tree")
 
@@ -116,4 +127,25 @@ def test_scan_by_topic_reaches_the_wall_then_rides_with_the_robot(dashboard, sca
         assert len(drawn["points"]) == len(expected)
         worst = max(math.dist(a, b) for a, b in zip(drawn["points"], expected, strict=True))
         assert worst < 2e-3, f"a point is {worst:.4f} m from where its range puts it"
+    assert recorder.errors == []
+
+
+def test_screenshot_of_the_robot_world_in_3d(dashboard, system: System, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    """The docs' picture (docs/img/view3d_robot.png with SKYDECK_UPDATE_SCREENSHOTS=1): the room,
+    the robot driven on an arc, its scan, odometry trail and frames."""
+    page, recorder = dashboard
+    page.set_viewport_size({"width": 1600, "height": 1100})
+    node = ThreadedNode("view3d_driver", system.url)
+    node.publish_every("/cmd_vel", lambda: Twist(linear=Vector3(x=0.25), angular=Vector3(z=0.5)), 0.1)
+    try:
+        add_by_topic(page, "/scan")
+        add_by_topic(page, "/odom", color="#ff5fd2")
+        add_by_topic(page, "/tf")
+        wait_display(page, "/odom", "d.trail > 60")
+    finally:
+        node.close()
+    follow_and_zoom(page, 2, "v.world.robot.robot")
+    screenshot = screenshot_path("view3d_robot.png", tmp_path)
+    page.locator("#map-panel").screenshot(path=str(screenshot))
+    assert screenshot.stat().st_size > 10_000
     assert recorder.errors == []
