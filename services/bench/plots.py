@@ -25,7 +25,21 @@ def write_plots(data: dict[str, Any], directory: Path) -> list[Path]:
         written.append(_throughput(data["throughput_by_size"], directory / "bench_throughput_size.png"))
     if "rtf_by_boxes" in data:
         written.append(_rtf(data["rtf_by_boxes"], directory / "bench_rtf_boxes.png"))
+    if "rss" in data:
+        written.append(_soak(data["rss"], directory / "bench_soak_rss.png"))
     return written
+
+
+def _soak(samples: dict[str, list[tuple[float, float]]], path: Path) -> Path:
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 4))
+    for name, points in sorted(samples.items()):
+        ax.plot([t / 60 for t, _ in points], [v for _, v in points], label=name)
+    ax.set_xlabel("minutes")
+    ax.set_ylabel("RSS (MiB)")
+    ax.set_title("Soak: every process's memory under 50 viewers, a stalled reader, reconnects")
+    return _save(fig, ax, path)
 
 
 def _latency(samples: dict[str, list[float]], path: Path) -> Path:

@@ -6,6 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
+from services.cli.arguments import positive_float
 from services.cli.errors import CliError
 
 __all__ = ["add_parser"]
@@ -32,10 +33,19 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     )
     p.add_argument("--no-plots", action="store_true", help="no plots, even for a full run")
     p.add_argument("--only", metavar="NAME[,NAME]", help="only the families of these rows (e.g. mission,service_rtt_p50)")
+    p.add_argument(
+        "--soak",
+        type=positive_float,
+        metavar="MINUTES",
+        help="instead: run the drone world at --speed max with 50 viewers, a stalled reader and reconnecting "
+        "clients for MINUTES, and report every process's memory (within 10%% of its value after warm-up)",
+    )
     p.set_defaults(func=_bench)
 
 
 def _bench(args: argparse.Namespace) -> int:
+    if args.soak is not None:
+        return _soak(args)
     from services.bench import run_bench
 
     plots = args.plots
@@ -54,3 +64,24 @@ def _bench(args: argparse.Namespace) -> int:
     for path in outcome.plots:
         print(f"plot written to {path}", file=sys.stderr)
     return 1 if outcome.errors else 0
+
+
+def _soak(args: argparse.Namespace) -> int:
+    from services.bench.plots import write_plots
+    from services.bench.report import format_table, machine_info, write_json
+    from services.bench.soak import run_soak
+
+    results, data = run_soak(args.soak)
+    print(format_table(results))
+    counters = data["counters"]
+    print(
+        f"load: {counters['frames']:,} pose frames to 50 viewers, {counters['reconnects']:,} reconnects, "
+        f"{counters['stalled_readers']} stalled readers",
+        file=sys.stderr,
+    )
+    if args.out is not None:
+        write_json(args.out, results, machine_info(), {"soak_minutes": args.soak, **data})
+    if args.plots is not None:
+        for path in write_plots(data, args.plots):
+            print(f"plot written to {path}", file=sys.stderr)
+    return 0 if all(r.met for r in results) else 1

@@ -154,3 +154,20 @@ def test_ground_track_runs_from_take_off_to_touchdown() -> None:
     assert track.closest == [0.0] and track.missed == 0
     track.add(_pose(10, 6.0, 9.0, 8.0, 0.05))
     assert track.missed == 3
+
+
+@pytest.mark.slow
+@pytest.mark.timeout(150)
+def test_a_short_soak_samples_every_process_under_load(tmp_path: Path) -> None:
+    """`skydeck bench --soak MINUTES`: a row per process of the launch, and the load it ran under."""
+    out = tmp_path / "soak.json"
+    done = subprocess.run(
+        [sys.executable, "-m", "services.cli", "bench", "--soak", "0.3", "--out", str(out)],
+        capture_output=True, text=True, timeout=140, cwd=tmp_path,
+    )  # fmt: skip
+    assert "Traceback" not in done.stderr, done.stderr[-2000:]
+    rows = {row["name"]: row for row in json.loads(out.read_text())["results"]}
+    assert {"soak_rss_sim", "soak_rss_control", "soak_rss_ai", "soak_rss_skydeck_core"} <= set(rows)
+    assert all(row["value"] > 10 and row["reference"] == "after warm-up" for row in rows.values())
+    counters = json.loads(out.read_text())["run"]["counters"]
+    assert counters["frames"] > 1000 and counters["stalled_readers"] >= 1
