@@ -2,10 +2,11 @@
 # docker-compose.yml runs one container of it per process; see README "Run with Docker".
 #
 # Stages:
-#   web-vendor  npm ci of web_ui/vendor (Swagger UI for the core's /docs); only its files leave
+#   web-vendor  npm ci of web_ui/vendor (Swagger UI for the core's /docs, three.js for the
+#               dashboard's 3D view); only the files served leave
 #   build       a venv at /opt/skydeck: runtime dependencies from requirements-runtime.lock
 #               (hash-checked), then the project itself as a wheel (no editable install)
-#               and the Swagger UI files inside the installed web_ui package
+#               and the Swagger UI and three.js files inside the installed web_ui package
 #   final       python slim + that venv, a non-root user; no node, npm, pip, setuptools or compilers
 #
 # Layer order: lock files first, sources last, so a code change rebuilds only the last layers.
@@ -43,12 +44,17 @@ COPY web_ui ./web_ui
 COPY services ./services
 # Dependencies are already in place (--no-deps); pip builds the wheel in a throwaway build env.
 RUN /opt/skydeck/bin/pip install --no-deps .
-# The core serves Swagger UI from web_ui/vendor/node_modules/swagger-ui-dist next to the
-# installed web_ui package (services/core/app.py); the package's folder is asked, not assumed.
+# The core serves Swagger UI and three.js from web_ui/vendor/node_modules next to the installed
+# web_ui package (services/core/app.py); the package's folder is asked, not assumed. Of three.js
+# only what the dashboard imports: the ES module build and the orbit controls.
 COPY --from=web-vendor /vendor/node_modules/swagger-ui-dist /tmp/swagger-ui-dist
+COPY --from=web-vendor /vendor/node_modules/three/LICENSE /vendor/node_modules/three/package.json /tmp/three/
+COPY --from=web-vendor /vendor/node_modules/three/build /tmp/three/build
+COPY --from=web-vendor /vendor/node_modules/three/examples/jsm/controls /tmp/three/examples/jsm/controls
 RUN web_ui="$(/opt/skydeck/bin/python -I -c 'import pathlib, web_ui; print(pathlib.Path(web_ui.__file__).parent)')" \
     && mkdir -p "$web_ui/vendor/node_modules" \
     && mv /tmp/swagger-ui-dist "$web_ui/vendor/node_modules/swagger-ui-dist" \
+    && mv /tmp/three "$web_ui/vendor/node_modules/three" \
     && /opt/skydeck/bin/python -m pip uninstall --yes setuptools pip
 # Fail the build, not the first `docker compose up`, if a process cannot even import.
 RUN cd / && /opt/skydeck/bin/python -I -c "import services.core.app, sim_server.node, services.perception.node, services.control.node, services.ai.node" \

@@ -241,6 +241,7 @@ def test_the_final_stage_runs_as_a_user_without_build_tools() -> None:
         assert tool not in final, f"the final stage does not use {tool}"
     assert "--require-hashes" in text and "requirements-runtime.lock" in text
     assert "swagger-ui-dist" in text, "the core's /docs needs the Swagger UI files"
+    assert "three/build" in text, "the dashboard's 3D view needs three.js"
 
 
 def _pins(lock: Path) -> dict[str, tuple[str, frozenset[str]]]:

@@ -42,6 +42,7 @@ __all__ = ["create_app"]
 _WEB_UI = Path(__file__).resolve().parents[2] / "web_ui"
 _STATIC_DIR = _WEB_UI / "static"
 _SWAGGER_DIR = _WEB_UI / "vendor" / "node_modules" / "swagger-ui-dist"
+_THREE_DIR = _WEB_UI / "vendor" / "node_modules" / "three"  # the 3D view's library (ES modules)
 
 
 def create_app(settings: CoreSettings | None = None) -> FastAPI:
@@ -137,6 +138,8 @@ def create_app(settings: CoreSettings | None = None) -> FastAPI:
 
     if _SWAGGER_DIR.is_dir():
         app.mount("/static/vendor/swagger-ui", StaticFiles(directory=_SWAGGER_DIR), name="swagger-ui")
+    if _THREE_DIR.is_dir():
+        app.mount("/static/vendor/three", StaticFiles(directory=_THREE_DIR), name="three")
     if _STATIC_DIR.is_dir():
         app.mount("/static", StaticFiles(directory=_STATIC_DIR), name="static")
 

@@ -50,7 +50,7 @@ def test_the_map_shows_the_room_the_robot_the_person_and_the_scan(dashboard, roo
     assert page.locator("#reset").is_visible()
     for drone_only in ("#takeoff", "#land", "#mission-start", "#mission-stop", "#mission-status"):
         assert page.locator(drone_only).is_hidden(), drone_only
-    assert "robot: x" in page.locator("#drone-summary").inner_text()
+    page.wait_for_function("document.querySelector('#drone-summary').textContent.includes('robot: x')", timeout=10_000)
     assert recorder.errors == []
     core = urlsplit(room.url).netloc
     assert [u for u in recorder.urls if not u.startswith("data:") and urlsplit(u).netloc != core] == []

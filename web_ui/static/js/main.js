@@ -17,6 +17,7 @@ import { Room, topicIn } from "./room.js";
 import { StatusBanner } from "./status.js";
 import { Tabs } from "./tabs.js";
 import { Teleop } from "./teleop.js";
+import { View3DLoader } from "./view3d/loader.js";
 import { World } from "./world.js";
 
 const $ = (id) => document.getElementById(id);
@@ -26,6 +27,13 @@ const room = new Room(); // the robot world's state, started when /simulator/wor
 const graph = new GraphPoller();
 const layers = new Layers();
 const tabs = new Tabs(document.querySelector(".tabs"));
+// The main view: the 2D map or the 3D view (remembered across reloads).
+const viewTabs = new Tabs($("map-panel"));
+const view3d = new View3DLoader($("view3d"));
+viewTabs.addEventListener("change", () => {
+  view3d.setShown(viewTabs.current === "view3d");
+  localStorage.setItem("skydeck.view", viewTabs.current);
+});
 
 const commands = new Commands({
   buttons: [...document.querySelectorAll("#commands-panel [data-service]")],
@@ -102,6 +110,7 @@ graph.addEventListener("update", () => {
   inspector.updateGraph(graph.graph);
   layersPanel.updateGraph(graph.graph);
   parameters.updateGraph(graph.graph);
+  view3d.updateGraph(graph.graph);
 });
 function expandGraph(expanded) {
   const button = $("graph-expand");
@@ -151,6 +160,7 @@ world.addEventListener("ai-status", renderMission);
 
 initTokenButton($("token-button"));
 tabs.show("topics");
+viewTabs.show(localStorage.getItem("skydeck.view") === "view3d" ? "view3d" : "map");
 world.start();
 graph.start();
 layers.restore();
@@ -252,6 +262,8 @@ window.skydeck = Object.freeze({
   /** Client (page) coordinates of map point (x, y): where to click to fly there. */
   worldToClient: (x, y) => map.worldToClient(x, y),
   clientToWorld: (x, y) => map.clientToWorld(x, y),
+  /** The 3D view: fixed frame, frames, camera, world, displays (what each draws, in the fixed frame), frame times. */
+  view3d: (options) => view3d.snapshot(options),
 });
 
 function renderLegendLayers() {

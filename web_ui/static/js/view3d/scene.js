@@ -1,0 +1,213 @@
+// The 3D view's stage: renderer, camera, orbit controls (left drag orbits, right drag pans, wheel
+// zooms), the grid and the fixed frame's axes. Coordinates are ROS's (x forward, y left, z up),
+// the scene's root is the fixed frame. Draws on animation frames only while shown, and only when
+// something changed; every frame's timing is kept for the figures in docs/performance.md.
+
+import * as THREE from "three";
+import { OrbitControls } from "three/addons/controls/OrbitControls.js";
+import { disposeObject, makeAxes } from "./shapes.js";
+
+const STATS_FRAMES = 600; // about 10 s of frames at 60 Hz
+
+/** Whether WebGL runs on a software rasteriser (no GPU: SwiftShader, llvmpipe), where
+ * antialiasing costs a third of the frame rate; it is turned off there. */
+function softwareRendering() {
+  const gl = document.createElement("canvas").getContext("webgl2");
+  if (!gl) return false;
+  const info = gl.getExtension("WEBGL_debug_renderer_info");
+  const name = String(gl.getParameter(info ? info.UNMASKED_RENDERER_WEBGL : gl.RENDERER));
+  gl.getExtension("WEBGL_lose_context")?.loseContext();
+  return /swiftshader|llvmpipe|softpipe|software/i.test(name);
+}
+
+/** Timing of the last frames: the interval between animation frames, and in each drawn frame our
+ * work: applying data to the scene (update) and three.js issuing the draw (draw). */
+class FrameStats {
+  constructor() {
+    this.intervals = [];
+    this.work = [];
+    this.update = [];
+    this.draw = [];
+    this.rendered = 0;
+    this.ticks = 0;
+    this._last = 0;
+  }
+
+  record(now, updateMs, drawMs) {
+    if (this._last) push(this.intervals, now - this._last);
+    this._last = now;
+    this.ticks += 1;
+    if (drawMs !== null) {
+      this.rendered += 1;
+      push(this.work, updateMs + drawMs);
+      push(this.update, updateMs);
+      push(this.draw, drawMs);
+    }
+  }
+
+  /** A pause (hidden tab): the next interval is not a frame time. */
+  pause() {
+    this._last = 0;
+  }
+
+  /** Percentiles of the last `frames` frames (all kept, by default). */
+  summary(frames = STATS_FRAMES) {
+    const interval = percentiles(this.intervals.slice(-frames));
+    return {
+      ticks: this.ticks,
+      rendered: this.rendered,
+      fps: interval.mean ? 1000 / interval.mean : 0,
+      intervalMs: interval,
+      workMs: percentiles(this.work.slice(-frames)),
+      updateMs: percentiles(this.update.slice(-frames)),
+      drawMs: percentiles(this.draw.slice(-frames)),
+    };
+  }
+}
+
+function push(list, value) {
+  list.push(value);
+  if (list.length > STATS_FRAMES) list.shift();
+}
+
+function percentiles(values) {
+  if (!values.length) return { count: 0, mean: 0, p50: 0, p95: 0, max: 0 };
+  const sorted = [...values].sort((a, b) => a - b);
+  const at = (q) => sorted[Math.min(sorted.length - 1, Math.floor(q * sorted.length))];
+  const mean = sorted.reduce((sum, v) => sum + v, 0) / sorted.length;
+  return { count: sorted.length, mean, p50: at(0.5), p95: at(0.95), max: sorted[sorted.length - 1] };
+}
+
+export class Scene3D {
+  /** `onTick(now)` runs every animation frame while shown; it returns true when it changed the scene. */
+  constructor(canvas, { onTick }) {
+    this.canvas = canvas;
+    this.onTick = onTick;
+    this.software = softwareRendering();
+    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: !this.software });
+    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
+    this.scene = new THREE.Scene();
+    this.scene.background = new THREE.Color(0x0e1319);
+    this.camera = new THREE.PerspectiveCamera(50, 1, 0.05, 1000);
+    this.camera.up.set(0, 0, 1); // ROS: z up
+    this.camera.position.set(-10, -10, 9);
+    this.controls = new OrbitControls(this.camera, canvas);
+    this.controls.screenSpacePanning = false; // pan along the ground, as rviz's orbit view
+    this.controls.maxPolarAngle = Math.PI * 0.499;
+    this.controls.addEventListener("change", () => this.invalidate());
+    this.scene.add(new THREE.HemisphereLight(0xffffff, 0x334455, 2.2));
+    const sun = new THREE.DirectionalLight(0xffffff, 1.4);
+    sun.position.set(-3, -5, 10);
+    this.scene.add(sun);
+    this.fixedAxes = makeAxes(1, 0.03);
+    this.scene.add(this.fixedAxes);
+    this.grid = null;
+    this.setGrid(20, 1);
+    this.stats = new FrameStats();
+    this.shown = false;
+    this._dirty = true;
+    this._raf = 0;
+    new ResizeObserver(() => this._resize()).observe(canvas.parentElement);
+  }
+
+  /** Draw at the next animation frame. */
+  invalidate() {
+    this._dirty = true;
+  }
+
+  add(object) {
+    this.scene.add(object);
+    this.invalidate();
+  }
+
+  remove(object) {
+    this.scene.remove(object);
+    this.invalidate();
+  }
+
+  /** A square grid `size` metres across, lines every `cell` metres, in the fixed frame's xy plane. */
+  setGrid(size, cell) {
+    if (this.grid && this.grid.userData.size === size && this.grid.userData.cell === cell) return;
+    const visible = this.grid ? this.grid.visible : true;
+    if (this.grid) {
+      this.scene.remove(this.grid);
+      disposeObject(this.grid);
+    }
+    const divisions = Math.max(1, Math.round(size / cell));
+    this.grid = new THREE.GridHelper(divisions * cell, divisions, 0x3a4a5c, 0x243140);
+    this.grid.rotation.x = Math.PI / 2; // GridHelper lies in xz; ROS's ground is xy
+    this.grid.userData = { size, cell };
+    this.grid.visible = visible;
+    this.scene.add(this.grid);
+    this.invalidate();
+  }
+
+  setShown(shown) {
+    if (shown === this.shown) return;
+    this.shown = shown;
+    if (shown) {
+      this._resize();
+      this.invalidate();
+      this._raf = requestAnimationFrame(this._frame);
+    } else {
+      cancelAnimationFrame(this._raf);
+      this._raf = 0;
+      this.stats.pause();
+    }
+  }
+
+  /** Camera position and orbit target as plain arrays (for the saved view). */
+  cameraState() {
+    return { position: this.camera.position.toArray(), target: this.controls.target.toArray() };
+  }
+
+  setCamera(position, target) {
+    this.camera.position.fromArray(position);
+    this.controls.target.fromArray(target);
+    this.controls.update();
+    this.invalidate();
+  }
+
+  /** Look straight down on `target` from `height` m, +x to the right and +y up, as the 2D map. */
+  topDown(target, height) {
+    // A hair south of vertical: orbit controls need a direction to call "up" on the screen.
+    this.setCamera([target.x, target.y - height * 1e-3, target.z + height], [target.x, target.y, target.z]);
+  }
+
+  /** Move the orbit target to `point`, carrying the camera along (the follow view). */
+  follow(point) {
+    const target = this.controls.target;
+    if (target.distanceToSquared(point) < 1e-8) return;
+    const delta = point.clone().sub(target);
+    target.add(delta);
+    this.camera.position.add(delta);
+    this.controls.update();
+    this.invalidate();
+  }
+
+  _frame = (now) => {
+    if (!this.shown) return;
+    this._raf = requestAnimationFrame(this._frame);
+    const start = performance.now();
+    const changed = this.onTick(now);
+    const updated = performance.now();
+    let drawMs = null;
+    if ((changed || this._dirty) && this.canvas.width > 1 && this.canvas.height > 1) {
+      this.renderer.render(this.scene, this.camera);
+      this._dirty = false;
+      drawMs = performance.now() - updated;
+    }
+    this.stats.record(now, updated - start, drawMs);
+  };
+
+  _resize() {
+    const rect = this.canvas.parentElement.getBoundingClientRect();
+    if (rect.width < 2 || rect.height < 2) return;
+    this.renderer.setSize(rect.width, rect.height, false);
+    this.canvas.style.width = `${rect.width}px`;
+    this.canvas.style.height = `${rect.height}px`;
+    this.camera.aspect = rect.width / rect.height;
+    this.camera.updateProjectionMatrix();
+    this.invalidate();
+  }
+}
