@@ -1,7 +1,8 @@
 """The gateway: every topic and service name answered by the core, routed to the node behind it.
 
-- ``POST /NAME``: a service call, forwarded to the hosting node (404 unknown, 503 unreachable,
-  504 timeout, each with a ``detail`` that says what to do).
+- ``POST /NAME``: a service call, forwarded to the hosting node through the one service-call
+  path (:mod:`services.core.service_calls`: 404 unknown, 503 unreachable, 504 timeout, each with
+  a ``detail`` that says what to do).
 - ``GET /NAME``: the latest message of a topic, from a publisher.
 - ``ws://CORE/NAME``: the topic's stream (see :mod:`services.core.gateway_topic`).
 """
@@ -16,14 +17,13 @@ from services.core.core_node import CORE_NODE, CoreNode
 from services.core.gateway_topic import GatewayTopic, declared_type
 from services.core.registry import Registry
 from services.core.settings import CoreSettings
-from services.runtime.auth import NOT_AUTHORISED, presented_token, token_matches
+from services.core.service_calls import ServiceCallFailed, ServiceCalls
+from services.runtime.auth import presented_token
 from services.runtime.edge.topic_socket import serve_topic_socket
-from services.runtime.http_client import HttpClient, HttpError, HttpTimeout
+from services.runtime.http_client import HttpClient, HttpError
 from shared_models import InvalidNameError, resolve_name
 
 __all__ = ["Gateway"]
-
-_FORWARDED_HEADERS = ("content-type", "authorization")
 
 
 def _error(status_code: int, detail: str) -> JSONResponse:
@@ -33,11 +33,14 @@ def _error(status_code: int, detail: str) -> JSONResponse:
 class Gateway:
     """Routes names to nodes for HTTP and WebSocket clients of the core."""
 
-    def __init__(self, registry: Registry, core: CoreNode, settings: CoreSettings, http: HttpClient) -> None:
+    def __init__(
+        self, registry: Registry, core: CoreNode, settings: CoreSettings, http: HttpClient, calls: ServiceCalls
+    ) -> None:
         self._registry = registry
         self._core = core
         self._settings = settings
         self._http = http
+        self.calls = calls
 
     # -- HTTP ---------------------------------------------------------------------------------
 
@@ -52,38 +55,16 @@ class Gateway:
         return await self._latest(name)
 
     async def _call_service(self, name: str, request: Request) -> Response:
-        found = self._registry.service(name)
-        if found is None:
-            if self._registry.topic_type(name) is not None:
-                return _error(405, f"{name} is a topic, not a service: GET it or open a WebSocket to it")
-            return _error(404, f"no service {name}: see `skydeck service list` or GET /api/graph")
-        # Checked here as well as on the node: a call through the core is refused even when the
-        # node behind it was started without the token.
-        if not token_matches(self._settings.token, request):
-            return _error(401, NOT_AUTHORISED)
-        _, record = found
-        node = record.description.name
-        url = record.description.url.rstrip("/") + name
-        headers = {key: value for key in _FORWARDED_HEADERS if (value := request.headers.get(key))}
-        if token := presented_token(request):
-            headers["authorization"] = f"Bearer {token}"  # also when it came as ?token= (a browser)
         try:
-            reply = await self._http.post(
-                url, await request.body(), headers=headers, timeout_s=self._settings.gateway_timeout_s
+            reply = await self.calls.call(
+                name,
+                await request.body(),
+                token=presented_token(request),
+                content_type=request.headers.get("content-type"),
             )
-        except ValueError:  # a ?token= with a line break: never put it into a header
-            return _error(400, "the token holds characters a token cannot have")
-        except HttpTimeout:
-            return _error(
-                504,
-                f"{name} on node {node} did not answer within {self._settings.gateway_timeout_s:g} s: "
-                f"is its handler stuck? see `skydeck node info {node}`",
-            )
-        except HttpError:
-            return _error(
-                503, f"node {node} hosting {name} is not reachable at {url}: is it running? see `skydeck node list`"
-            )
-        return Response(reply.body, status_code=reply.status, media_type=reply.headers.get("content-type"))
+        except ServiceCallFailed as failed:
+            return _error(failed.http_status, str(failed))
+        return Response(reply.body, status_code=reply.status, media_type=reply.content_type)
 
     async def _latest(self, name: str) -> Response:
         endpoint = self._core.endpoint(name)

@@ -21,6 +21,7 @@ __all__ = [
     "WEBSOCKET_CLIENT_LOGGER",
     "RedactTokens",
     "presented_token",
+    "token_is_valid",
     "token_matches",
 ]
 
@@ -38,9 +39,14 @@ def presented_token(connection: HTTPConnection) -> str:
 
 def token_matches(expected: str, connection: HTTPConnection) -> bool:
     """Whether ``connection`` may act; always true when no token is configured."""
+    return token_is_valid(expected, presented_token(connection))
+
+
+def token_is_valid(expected: str, presented: str) -> bool:
+    """Whether ``presented`` is the token (in constant time); always true when none is configured."""
     if not expected:
         return True
-    return hmac.compare_digest(presented_token(connection).encode(), expected.encode())
+    return hmac.compare_digest(presented.encode(), expected.encode())
 
 
 _SECRETS = re.compile(r"(?i)(authorization:\s*(?:bearer\s+)?|[?&]token=)[^\s&]+")

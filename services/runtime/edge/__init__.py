@@ -3,7 +3,8 @@
 - :mod:`.topic_socket`: ``serve_topic_socket`` and the ``TopicPort`` every socket talks to
 - :mod:`.options`: ``?queue=&rate=&mode=``
 - :mod:`.frames`: validating a frame, refusing it with a close code
-- :mod:`.pump`: the loop that writes an outbox to a socket and reads what the client sends
+- :mod:`.pump`: the loop that writes an outbox to a socket (``write_outbox``, also the protocol
+  adapters') and reads what the client sends
 - :mod:`.outbox`: a reader's bounded queue (oldest dropped: ROS's queue_size)
 - :mod:`.links`: the other direction, a subscriber's connection to a remote publisher
 """
@@ -12,9 +13,11 @@ from services.runtime.edge.frames import FrameRejected, close_with, parse_frame
 from services.runtime.edge.links import PublisherLink, stream_url
 from services.runtime.edge.options import Mode, StreamOptions
 from services.runtime.edge.outbox import Outbox
+from services.runtime.edge.pump import Encode, write_outbox
 from services.runtime.edge.topic_socket import TopicConnection, TopicPort, serve_topic_socket
 
 __all__ = [
+    "Encode",
     "FrameRejected",
     "Mode",
     "Outbox",
@@ -26,4 +29,5 @@ __all__ = [
     "parse_frame",
     "serve_topic_socket",
     "stream_url",
+    "write_outbox",
 ]

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-from collections.abc import Callable, Coroutine
+from collections.abc import Callable, Coroutine, Sequence
 from typing import Any
 
 from starlette.websockets import WebSocket, WebSocketDisconnect
@@ -20,7 +20,7 @@ from services.runtime.edge.options import StreamOptions
 from services.runtime.edge.outbox import Outbox
 from services.runtime.wire import Close
 
-__all__ = ["serve_stream"]
+__all__ = ["Encode", "serve_stream", "write_outbox"]
 
 
 async def serve_stream(
@@ -55,37 +55,66 @@ async def serve_stream(
 
 
 _Send = Callable[[Any], Coroutine[Any, Any, None]]
+ASGIMessage = dict[str, Any]
+Encode = Callable[[str], Sequence[ASGIMessage]]
+"""A protocol's form of one frame: the ASGI ``websocket.send`` messages that carry it."""
 
 
 async def _write_frames(
     websocket: WebSocket, outbox: Outbox, options: StreamOptions, initial_frame: str | None
 ) -> None:
-    send = websocket.send
-    eager = _EagerSend(send)
+    await write_outbox(websocket.send, outbox, rate_hz=options.rate_hz, initial_frame=initial_frame)
+
+
+async def write_outbox(
+    send: _Send,
+    outbox: Outbox,
+    *,
+    rate_hz: float | None = None,
+    initial_frame: str | None = None,
+    encode: Encode | None = None,
+) -> None:
+    """Write ``outbox`` with ``send`` (a WebSocket's ASGI send) until the socket is gone.
+
+    Frames go as JSON text unless ``encode`` turns each into a protocol's messages (rosbridge's
+    envelope, Foxglove's binary frame); a throttled reader (``rate_hz``) gets the newest frame
+    each period. Protocol adapters run one of these per subscription on one socket: each write
+    completes on its own, so frames of different subscriptions never interleave.
+    """
+    eager = _EagerSend(send, encode)
     try:
         with contextlib.suppress(WebSocketDisconnect, RuntimeError, OSError):
             if initial_frame is not None:
-                await send({"type": "websocket.send", "text": initial_frame})
-            if options.rate_hz is None:
+                await _send_frame(send, initial_frame, encode)
+            if rate_hz is None:
                 while True:
                     outbox.send_now = eager  # only while idle: a frame must not overtake queued ones
                     frames = await outbox.drain()
                     outbox.send_now = None
                     await eager.settled()
-                    for frame in frames:
-                        await send({"type": "websocket.send", "text": frame})
+                    if encode is None:
+                        for frame in frames:
+                            await send({"type": "websocket.send", "text": frame})
+                    else:
+                        for frame in frames:
+                            for message in encode(frame):
+                                await send(message)
             else:
-                await _write_throttled(send, outbox, options.rate_hz)
+                period_s = 1.0 / rate_hz
+                while True:
+                    await _send_frame(send, await outbox.latest(), encode)
+                    await asyncio.sleep(period_s)
     finally:
         outbox.send_now = None
         eager.cancel()
 
 
-async def _write_throttled(send: _Send, outbox: Outbox, rate_hz: float) -> None:
-    period_s = 1.0 / rate_hz
-    while True:
-        await send({"type": "websocket.send", "text": await outbox.latest()})
-        await asyncio.sleep(period_s)
+async def _send_frame(send: _Send, frame: str, encode: Encode | None) -> None:
+    if encode is None:
+        await send({"type": "websocket.send", "text": frame})
+        return
+    for message in encode(frame):
+        await send(message)
 
 
 class _EagerSend:
@@ -96,16 +125,25 @@ class _EagerSend:
     server writes to the transport), so its coroutine is stepped here, the way Python 3.12's
     eager tasks start: done in one step, nothing else happens. If it must wait (the transport
     paused writing), a task finishes it, and the writer waits for that task before sending more.
+    A frame that a protocol sends as several messages (fragments) is left to the writer.
     """
 
-    def __init__(self, send: _Send) -> None:
+    def __init__(self, send: _Send, encode: Encode | None = None) -> None:
         self._send = send
+        self._encode = encode
         self._pending: asyncio.Task[None] | None = None
 
     def __call__(self, frame: str) -> bool:
         if self._pending is not None:
             return False  # an earlier frame still waits for the socket: queue behind it
-        step = self._send({"type": "websocket.send", "text": frame})
+        if self._encode is None:
+            message: ASGIMessage = {"type": "websocket.send", "text": frame}
+        else:
+            messages = self._encode(frame)
+            if len(messages) != 1:
+                return False
+            message = messages[0]
+        step = self._send(message)
         try:
             waiting_on = step.send(None)
         except StopIteration:
