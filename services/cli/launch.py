@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from services.cli.run import add_endpoint_flags
+
 __all__ = ["add_parser"]
 
 
@@ -18,6 +20,7 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.add_argument("--seed", type=int, help="world seed (default: a random one, printed)")
     p.add_argument("--boxes", type=int, help="number of boxes (default 8)")
     p.add_argument("--exclude", default="", help="nodes to leave out, comma-separated (e.g. perception,ai)")
+    add_endpoint_flags(p)
     p.set_defaults(func=_launch)
 
 
@@ -31,5 +34,10 @@ def _launch(args: argparse.Namespace) -> int:
         seed=args.seed,
         boxes=args.boxes,
         exclude=tuple(name.strip() for name in args.exclude.split(",") if name.strip()),
+        **{
+            key: value
+            for key, value in (("rosbridge_port", args.rosbridge_port), ("foxglove_port", args.foxglove_port))
+            if value is not None
+        },
     )
     return run_launch(args.file, options)  # a LaunchError is printed as one line by main

@@ -16,8 +16,8 @@ from starlette.websockets import WebSocket
 from services.core.core_node import CORE_NODE, CoreNode
 from services.core.gateway_topic import GatewayTopic, declared_type
 from services.core.registry import Registry
-from services.core.settings import CoreSettings
 from services.core.service_calls import ServiceCallFailed, ServiceCalls
+from services.core.settings import CoreSettings
 from services.runtime.auth import presented_token
 from services.runtime.edge.topic_socket import serve_topic_socket
 from services.runtime.http_client import HttpClient, HttpError
@@ -66,19 +66,27 @@ class Gateway:
             return _error(failed.http_status, str(failed))
         return Response(reply.body, status_code=reply.status, media_type=reply.content_type)
 
-    async def _latest(self, name: str) -> Response:
+    async def latest_frame(self, name: str) -> bytes | None:
+        """The latest message of topic ``name`` (JSON), from the core or a publisher, if any."""
         endpoint = self._core.endpoint(name)
         if endpoint is not None and endpoint.latest_frame is not None:
-            return Response(endpoint.latest_frame, media_type="application/json")
-        publishers = [p for p in self._registry.publishers(name) if p.node != CORE_NODE]
-        for publisher in publishers:
+            return endpoint.latest_frame.encode()
+        for publisher in self._registry.publishers(name):
+            if publisher.node == CORE_NODE:
+                continue
             try:
                 reply = await self._http.get(publisher.url.rstrip("/") + name, timeout_s=2.0)
             except HttpError:
                 continue
             if reply.status == 200:
-                return Response(reply.body, media_type="application/json")
-        if publishers:
+                return reply.body
+        return None
+
+    async def _latest(self, name: str) -> Response:
+        frame = await self.latest_frame(name)
+        if frame is not None:
+            return Response(frame, media_type="application/json")
+        if any(p.node != CORE_NODE for p in self._registry.publishers(name)):
             return _error(404, f"no message on {name} yet")
         if self._registry.service(name) is not None:
             return _error(405, f"{name} is a service: call it with POST")

@@ -12,6 +12,7 @@ gateway like any other.
 from __future__ import annotations
 
 import itertools
+import logging
 import os
 from collections import Counter
 from collections.abc import Iterator
@@ -25,7 +26,8 @@ __all__ = ["Guest", "Guests", "HostedService"]
 
 
 class HostedService(Protocol):
-    """A service the core answers in-process for a guest (rosapi's, a rosbridge client's).
+    """A service the core answers in-process for a guest (rosapi's, a rosbridge client's), with
+    the shape of the SDK's :class:`~services.runtime.service.Service` (which is one).
 
     ``handle`` may raise any SkydeckError: the caller gets its ``http_status`` and message.
     """
@@ -33,7 +35,7 @@ class HostedService(Protocol):
     name: str
     srv_type: type[ServiceType]
 
-    async def handle(self, request: Message) -> Message: ...
+    async def handle(self, request: Message, logger: logging.Logger) -> Message: ...
 
 
 class Guest:

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+import logging
 from dataclasses import dataclass
 
 from pydantic import ValidationError
@@ -35,6 +36,7 @@ from shared_models.errors import SkydeckError
 __all__ = ["ServiceCallFailed", "ServiceCalls", "ServiceReply"]
 
 JSON = "application/json"
+logger = logging.getLogger("skydeck.core")
 
 
 @dataclass(frozen=True)
@@ -148,7 +150,7 @@ class ServiceCalls:
             return ServiceReply(422, json.dumps({"detail": detail}).encode())
         try:
             async with asyncio.timeout(timeout_s):
-                response = await service.handle(request)
+                response = await service.handle(request, logger)
         except TimeoutError:
             return _error_reply(504, f"{name} did not answer within {timeout_s:g} s")
         except SkydeckError as error:
