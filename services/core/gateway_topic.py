@@ -61,6 +61,14 @@ class GatewayTopic:
     def stop_reading(self, outbox: Outbox) -> None:
         self._core.stop_reading(self.name, outbox)
 
+    def advertise(self) -> None:
+        """Publish the topic from now on, before the first frame (rosbridge's and Foxglove's
+        advertise), so subscribers link to the core while the client gets ready."""
+        if self._endpoint is None:
+            msg_type = self.message_type()
+            self._endpoint = self._core.start_publishing(self.name, msg_type)
+            self._type = msg_type
+
     def publish(self, text: str, sender: Outbox | None) -> bool:
         """Validate ``text`` and publish it through the core node, to everyone but ``sender``.
 

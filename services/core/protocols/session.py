@@ -102,17 +102,21 @@ class ClientSession:
     # -- publishing -----------------------------------------------------------------------------
 
     def declare(self, topic: str, declared: type[Message] | None) -> GatewayTopic:
-        """This connection will publish ``topic`` (of type ``declared``, if the client names one).
+        """This connection publishes ``topic`` (of type ``declared``, if the client names one),
+        from now on: the core advertises it, so subscribers link before the first frame.
 
         Raises FrameRejected(1008) when the type is missing for a new topic or differs from the
-        topic's; nothing is published until the first frame.
+        topic's.
         """
         view = self._publications.get(topic)
-        if view is None or declared is not None:
-            view = GatewayTopic(self.access.core, self.access.registry, topic, declared)
-            view.message_type()  # refuses a type that does not fit before anything is published
-            self.stop_publishing(topic)
-            self._publications[topic] = view
+        if view is not None and declared in (None, view.message_type()):
+            return view
+        view = GatewayTopic(self.access.core, self.access.registry, topic, declared)
+        view.message_type()  # refuses a type that does not fit before anything is published
+        self.stop_publishing(topic)
+        view.advertise()
+        self._publications[topic] = view
+        self.guest.publishes(topic, view.message_type().__ros_type__)
         return view
 
     def publish(self, topic: str, text: str) -> None:
@@ -123,8 +127,7 @@ class ClientSession:
         self.check_may_write()
         view = self._publications.get(topic) or self.declare(topic, None)
         reading = self.readings.get(topic)
-        if view.publish(text, reading.outbox if reading is not None else None):
-            self.guest.publishes(topic, view.message_type().__ros_type__)
+        view.publish(text, reading.outbox if reading is not None else None)
 
     def stop_publishing(self, topic: str) -> bool:
         """This connection publishes ``topic`` no more; False if it did not."""
