@@ -22,6 +22,7 @@ import asyncio
 import itertools
 import json
 import logging
+from collections.abc import Awaitable, Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -109,7 +110,7 @@ class _Connection:
         self._hosted: dict[str, _ClientService] = {}
         self._calls: set[asyncio.Task[None]] = set()
         self._fragments = FragmentBuffer(self._settings.max_message_bytes)
-        self._handlers = {
+        self._handlers: dict[str, Callable[[Any], Awaitable[None]]] = {
             "advertise": self._advertise,
             "unadvertise": self._unadvertise,
             "publish": self._publish,

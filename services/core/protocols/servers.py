@@ -147,8 +147,8 @@ class EndpointServers:
             server = _QuietServer(config)
             task = asyncio.get_running_loop().create_task(server.serve(sockets=[sock]))
             self._running.append((server, task))
-        for server, task in self._running:
-            while not server.started and not task.done():
+        for running, task in self._running:
+            while not running.started and not task.done():
                 await asyncio.sleep(0.005)
 
     async def stop(self) -> None:
