@@ -115,6 +115,7 @@ async function parameters() {
   client.getParameters([], "all");
   emit({ all: (await next("parameterValues", (p) => p.id === "all")).parameters });
   client.subscribeParameterUpdates([name]);
+  await sleep(1000); // the core links to the nodes' /parameter_events in a moment
   client.setParameters([{ name, value: JSON.parse(value) }], "set");
   emit({ set: (await next("parameterValues", (p) => p.id === "set")).parameters });
   emit({ update: (await next("parameterValues", (p) => p.id === undefined)).parameters });
