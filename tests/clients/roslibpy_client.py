@@ -87,6 +87,26 @@ def hosted(ros: roslibpy.Ros) -> None:
     emit(calls=len(calls))
 
 
+def workshop(ros: roslibpy.Ros) -> None:
+    """The real workshop system: read the pose, take off, watch the drone climb."""
+    emit(pose=first_message(ros, "/drone/pose", "geometry_msgs/msg/PoseStamped"))
+    take_off = roslibpy.Service(ros, "/control/take_off", "std_srvs/srv/Trigger")
+    emit(take_off=dict(take_off.call(roslibpy.ServiceRequest(), timeout=10)))
+    climbed = threading.Event()
+    heights: list[float] = []
+
+    def follow(message: dict) -> None:
+        heights.append(message["pose"]["position"]["z"])
+        if heights[-1] > 2.0:
+            climbed.set()
+
+    pose = roslibpy.Topic(ros, "/drone/pose", "geometry_msgs/msg/PoseStamped", throttle_rate=100)
+    pose.subscribe(follow)
+    emit(climbed=climbed.wait(60), top=max(heights, default=0.0))
+    pose.unsubscribe()
+    emit(topics=ros.get_topics())
+
+
 def main() -> None:
     url, scenario = sys.argv[1], sys.argv[2]
     headers = {"Authorization": f"Bearer {sys.argv[3]}"} if len(sys.argv) > 3 else None
@@ -94,7 +114,7 @@ def main() -> None:
     ros.run(timeout=15)
     emit(connected=ros.is_connected)
     try:
-        {"tour": tour, "hosted": hosted}[scenario](ros)
+        {"tour": tour, "hosted": hosted, "workshop": workshop}[scenario](ros)
     finally:
         ros.terminate()
 
