@@ -26,7 +26,7 @@ import time
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from starlette.websockets import WebSocket, WebSocketDisconnect
+from starlette.websockets import WebSocket
 
 from services.core.gateway_topic import declared_type
 from services.core.protocols.access import CoreAccess
@@ -44,7 +44,7 @@ from services.core.protocols.parameters import (
     event_values,
 )
 from services.core.protocols.rosapi import ROS_DISTRO
-from services.core.protocols.session import ClientSession
+from services.core.protocols.session import ClientSession, incoming
 from services.core.service_calls import ServiceCallFailed
 from services.runtime.edge.frames import FrameRejected, close_with
 from services.runtime.wire import DEFAULT_QUEUE, Close
@@ -167,23 +167,14 @@ class _Connection:
         if self._uses_time:
             self._follow(_CLOCK)
         limit = self._access.settings.max_message_bytes
-        while True:
+        async for frame in incoming(websocket, limit):
             try:
-                message = await websocket.receive()
-            except (WebSocketDisconnect, RuntimeError):
-                return
-            if message["type"] == "websocket.disconnect":
-                return
-            data = message.get("bytes")
-            text = message.get("text")
-            size = len(data) if data is not None else len(text or "")
-            try:
-                if size > limit:
+                if frame is None:
                     raise _Refused(f"a message of over {limit} bytes is refused (SKYDECK_MAX_MESSAGE_BYTES)")
-                if data is not None:
-                    self._binary(data)
+                if isinstance(frame, bytes):
+                    self._binary(frame)
                 else:
-                    await self._json(text or "")
+                    await self._json(frame)
             except (_Refused, SkydeckError) as error:
                 await self._status(_ERROR, str(error))
 

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from pydantic import ValidationError
-from starlette.websockets import WebSocket, WebSocketDisconnect
+from starlette.websockets import WebSocket
 
 from services.core.gateway_topic import declared_type
 from services.core.protocols.access import CoreAccess
@@ -53,7 +53,7 @@ from services.core.protocols.rosbridge_ops import (
     request_body,
     status_frame,
 )
-from services.core.protocols.session import ClientSession
+from services.core.protocols.session import ClientSession, incoming
 from services.runtime.auth import token_is_valid
 from services.runtime.edge.frames import FrameRejected
 from services.runtime.edge.pump import Encode
@@ -129,20 +129,13 @@ class _Connection:
 
     async def run(self, websocket: WebSocket) -> None:
         limit = self._settings.max_message_bytes
-        while True:
-            try:
-                message = await websocket.receive()
-            except (WebSocketDisconnect, RuntimeError):
-                return
-            if message["type"] == "websocket.disconnect":
-                return
-            text = message.get("text")
-            if text is None:
-                await self._status("error", "rosbridge frames are JSON text: binary (CBOR, BSON) is not supported here")
-            elif len(text) > limit or (len(text) * 4 > limit and len(text.encode()) > limit):
+        async for frame in incoming(websocket, limit):
+            if frame is None:
                 await self._status("error", f"a frame of over {limit} bytes is refused (SKYDECK_MAX_MESSAGE_BYTES)")
+            elif isinstance(frame, bytes):
+                await self._status("error", "rosbridge frames are JSON text: binary (CBOR, BSON) is not supported here")
             else:
-                await self._handle(text)
+                await self._handle(frame)
 
     def close(self) -> None:
         for task in self._calls:

@@ -17,10 +17,11 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+from collections.abc import AsyncIterator
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from starlette.websockets import WebSocket
+from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from services.core.gateway_topic import GatewayTopic
 from services.core.guests import Guest
@@ -35,7 +36,26 @@ from shared_models import Message
 if TYPE_CHECKING:
     from services.core.protocols.access import CoreAccess
 
-__all__ = ["ClientSession", "Reading"]
+__all__ = ["ClientSession", "Reading", "incoming"]
+
+
+async def incoming(websocket: WebSocket, max_bytes: int) -> AsyncIterator[str | bytes | None]:
+    """Each frame the client sends (text as ``str``, binary as ``bytes``) until it goes away;
+    ``None`` stands for a frame over ``max_bytes``, which the adapter answers in its own way."""
+    while True:
+        try:
+            message = await websocket.receive()
+        except (WebSocketDisconnect, RuntimeError):
+            return
+        if message["type"] == "websocket.disconnect":
+            return
+        text: str | None = message.get("text")
+        if text is None:
+            data: bytes = message.get("bytes") or b""
+            yield data if len(data) <= max_bytes else None
+        else:  # UTF-8 takes at most 4 bytes a character: encode only when that could matter
+            too_big = len(text) > max_bytes or (len(text) * 4 > max_bytes and len(text.encode()) > max_bytes)
+            yield None if too_big else text
 
 
 @dataclass(eq=False)

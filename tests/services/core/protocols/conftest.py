@@ -195,7 +195,11 @@ class Tuned(Node):
 
     def set_parameters(self, request: Any) -> Any:
         from services.core.protocols.parameters import from_value
-        from shared_models.rcl_interfaces import ParameterEvent, SetParametersResponse, SetParametersResult
+        from shared_models.rcl_interfaces import (
+            ParameterEvent,
+            SetParametersResponse,
+            SetParametersResult,
+        )
 
         results, changed = [], []
         for parameter in request.parameters:

@@ -13,7 +13,13 @@ from collections.abc import AsyncIterator
 import pytest
 from websockets.asyncio.client import connect
 
-from services.core.protocols.parameters import ParameterError, ParameterValueJson, from_value, split_name, to_value
+from services.core.protocols.parameters import (
+    ParameterError,
+    ParameterValueJson,
+    from_value,
+    split_name,
+    to_value,
+)
 from services.runtime import NodeSettings
 from shared_models.rcl_interfaces import ParameterType
 from tests.conftest import wait_until
