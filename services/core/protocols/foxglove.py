@@ -126,7 +126,7 @@ class _Connection:
         self._access = endpoint.access
         self._channels: dict[int, tuple[str, type[Message]]] = {}  # advertised to the client
         self._services: dict[int, tuple[str, str]] = {}  # id -> (name, type)
-        self._subscriptions: dict[int, int] = {}  # subscription id -> channel id
+        self._subscriptions: dict[int, tuple[str, type[Message]]] = {}  # id -> (topic, type)
         self._subscribed_topics: dict[str, int] = {}  # topic -> subscription id
         self._client_channels: dict[int, str] = {}  # client channel id -> topic
         self._parameters = Parameters(self._access.registry, session.call)
@@ -226,33 +226,33 @@ class _Connection:
     async def follow_graph(self) -> None:
         """Advertise what appeared since the last call and unadvertise what went away."""
         graph = self._endpoint.graph
-        channels = graph.channels
-        added = [cid for cid in channels if cid not in self._channels]
-        removed = [cid for cid in self._channels if cid not in channels]
+        # The state changes before the first await: a call running meanwhile sees it.
+        removed = [cid for cid in self._channels if cid not in graph.channels]
+        added = [cid for cid in graph.channels if cid not in self._channels]
         for cid in removed:
             topic, _ = self._channels.pop(cid)
-            for sub_id, channel in list(self._subscriptions.items()):
-                if channel == cid:
-                    self._drop_subscription(sub_id)
+            if topic in self._subscribed_topics:
+                self._drop_subscription(self._subscribed_topics[topic])
+        self._channels.update({cid: graph.channels[cid] for cid in added})
+        gone = [sid for sid in self._services if sid not in graph.services]
+        new = [sid for sid in graph.services if sid not in self._services]
+        for sid in gone:
+            del self._services[sid]
+        self._services.update({sid: graph.services[sid][:2] for sid in new})
         if removed:
             await self._send({"op": "unadvertise", "channelIds": removed})
         if added:
-            self._channels.update({cid: channels[cid] for cid in added})
             await self._send({"op": "advertise", "channels": [self._channel(cid) for cid in added]})
-        services = graph.services
-        gone = [sid for sid in self._services if sid not in services]
-        new = [sid for sid in services if sid not in self._services]
-        for sid in gone:
-            del self._services[sid]
         if gone:
             await self._send({"op": "unadvertiseServices", "serviceIds": gone})
         if new:
-            self._services.update({sid: services[sid][:2] for sid in new})
+            services = graph.services
             await self._send({
                 "op": "advertiseServices",
                 "services": [
                     {"id": sid, "name": services[sid][0], "type": services[sid][1], **service_schemas(services[sid][2])}
                     for sid in new
+                    if sid in services
                 ],
             })
         if self._graph_subscribed:
@@ -279,7 +279,7 @@ class _Connection:
             topic = self._channels[cid][0]
             if topic in self._subscribed_topics:
                 raise _Refused(f"channel {cid} ({topic}) is subscribed already (subscription {self._subscribed_topics[topic]})")
-            self._subscriptions[sub_id] = cid
+            self._subscriptions[sub_id] = self._channels[cid]
             self._subscribed_topics[topic] = sub_id
             self._follow(topic)
 
@@ -295,14 +295,9 @@ class _Connection:
             raise _Refused(f"no subscription {unknown}")
 
     def _drop_subscription(self, sub_id: int) -> None:
-        cid = self._subscriptions.pop(sub_id)
-        topic = self._channels[cid][0] if cid in self._channels else None
-        for name, known in list(self._subscribed_topics.items()):
-            if known == sub_id:
-                del self._subscribed_topics[name]
-                topic = name
-        if topic is not None:
-            self._follow(topic)
+        topic, _ = self._subscriptions.pop(sub_id)
+        del self._subscribed_topics[topic]
+        self._follow(topic)
 
     def _follow(self, topic: str) -> None:
         """Read ``topic`` while anything of this connection needs it: a subscription, the time
@@ -330,8 +325,7 @@ class _Connection:
                 messages += self._parameter_update(frame)
             sub_id = self._subscribed_topics.get(topic)
             if sub_id is not None:
-                cid = self._subscriptions[sub_id]
-                _, msg_type = self._channels[cid]
+                _, msg_type = self._subscriptions[sub_id]
                 now = self._sim_ns if self._uses_time else time.time_ns()
                 data = struct.pack("<BIQ", _MESSAGE_DATA, sub_id, now) + payloads.payload(topic, msg_type, frame)
                 messages.append({"type": "websocket.send", "bytes": data})
