@@ -9,11 +9,12 @@ STAMP := $(VENV)/.installed
 install: $(STAMP)
 
 # Reinstall only when the lock or the project metadata change, so `make install` is idempotent.
-$(STAMP): requirements.lock pyproject.toml web_ui/vendor/package-lock.json
+$(STAMP): requirements.lock pyproject.toml web_ui/vendor/package-lock.json tests/clients/package-lock.json
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --require-hashes --no-deps -r requirements.lock
 	$(BIN)/python -m pip install --quiet --no-deps --no-build-isolation -e .
 	cd web_ui/vendor && npm ci --silent --no-audit --no-fund
+	cd tests/clients && npm ci --silent --no-audit --no-fund
 	touch $(STAMP)
 
 up: install

@@ -22,6 +22,7 @@ MESSAGE_PACKAGES = (
     "rosgraph_msgs",
     "neato2_interfaces",
     "rcl_interfaces",
+    "rosapi_msgs",
     "std_srvs",
     "mavros_msgs",
     "ros_workshop",

@@ -14,9 +14,13 @@ launcher and the CLI all descend from one class. The whole tree::
     ├── ServiceError                       502   -     a service call got no answer
     │   ├── ServiceUnavailableError        503   -     nobody hosts it / its node is unreachable
     │   ├── ServiceTimeoutError            504   -     its node did not answer in time
-    │   └── ServiceCallRejectedError       4xx   -     its node refused the request
+    │   ├── ServiceCallRejectedError       4xx   -     its node refused the request
+    │   └── ServiceCallFailed              its   -     a call through the core reached no service
     ├── ServiceHandlerError                500   -     a handler raised or returned the wrong type
     ├── RegistrationRejected                -    -     the core refused a node's session
+    ├── EndpointPortBusy                    -    -     a protocol endpoint's port is taken at start-up
+    ├── Refused (rosbridge), _Refused (Foxglove)  a protocol op that cannot be done: a status reply
+    ├── ParameterError                     400   -     a parameter a protocol client named or set is wrong
     ├── HttpError                           -    -     an internal HTTP request got no reply
     │   ├── HttpTimeout / HttpUnreachable
     ├── InvalidCommand (ValueError)         -    -     a setpoint or cmd_vel the physics refuses

@@ -15,7 +15,7 @@ from typing import Annotated, Any, ClassVar, get_args, get_origin
 from shared_models._message import Declared, Message, RosPrimitive, ServiceType, all_interfaces
 from shared_models.errors import SkydeckError
 
-__all__ = ["UnknownInterfaceError", "get_interface", "interface_names", "interface_text"]
+__all__ = ["UnknownInterfaceError", "field_types", "get_interface", "interface_names", "interface_text"]
 
 Interface = type[Message] | type[ServiceType]
 
@@ -106,6 +106,17 @@ def interface_text(name_or_cls: str | Interface) -> str:
     if isinstance(cls, type) and issubclass(cls, Message):
         return "\n".join(_message_lines(cls, comment=True))
     raise TypeError(f"interface_text needs a message or service type, got {cls!r}")
+
+
+def field_types(cls: type[Message]) -> list[tuple[str, str, type[Message] | None]]:
+    """Each field of ``cls`` as ``(name, ROS type text, nested message type or None)``, the
+    type text as ``interface show`` prints it (``float64``, ``Point``, ``builtin_interfaces/Time``,
+    ``float64[36]``, ``geometry_msgs/Pose[]``)."""
+    package = _package(cls.__ros_type__)
+    return [
+        (name, *_field_type(cls, name, field.annotation, field.metadata, package))
+        for name, field in cls.model_fields.items()
+    ]
 
 
 def _comment_lines(comment: str) -> list[str]:

@@ -29,6 +29,7 @@ RESERVED_PREFIXES: tuple[str, ...] = (
     "/openapi.json",
     "/static",
     "/health",
+    "/rosbridge",  # the rosbridge endpoint on the core's own port
 )
 
 _ALLOWED = frozenset("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_/")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import os
 from collections.abc import AsyncIterator, Awaitable, Callable
 
 import pytest
@@ -13,6 +14,12 @@ from services.core.app import create_app
 from services.core.settings import CoreSettings
 from services.runtime import Node, NodeSettings
 from services.runtime.ports import free_port_block
+
+# The suite never binds the protocol endpoints' well-known ports (rosbridge 9090, Foxglove 8765):
+# other test runs, helpers and a user's own launch use them on this machine. Every harness passes
+# free ports or 0 itself; these zeros also cover any core a subprocess starts.
+os.environ["SKYDECK_ROSBRIDGE_PORT"] = "0"
+os.environ["SKYDECK_FOXGLOVE_PORT"] = "0"
 
 
 def free_port() -> int:
@@ -35,6 +42,7 @@ class CoreProcess:
 
     def __init__(self, port: int | None = None, **settings: object) -> None:
         self.port = port or free_port()
+        settings = {"rosbridge_port": 0, "foxglove_port": 0, **settings}  # endpoints off unless asked for
         self.settings = CoreSettings(host="127.0.0.1", port=self.port, **settings)  # type: ignore[arg-type]
         self.url = f"http://127.0.0.1:{self.port}"
         self.app = None

@@ -131,8 +131,9 @@ def test_the_five_processes_from_one_image(services: dict[str, dict[str, Any]]) 
         assert service["restart"] == "unless-stopped", name
 
 
-def test_only_the_core_port_is_published(services: dict[str, dict[str, Any]]) -> None:
-    assert services["core"]["ports"] == ["127.0.0.1:8000:8000"]
+def test_only_the_core_ports_are_published(services: dict[str, dict[str, Any]]) -> None:
+    # The core's own, and its rosbridge and Foxglove endpoints (CoreSettings' defaults).
+    assert services["core"]["ports"] == ["127.0.0.1:8000:8000", "127.0.0.1:9090:9090", "127.0.0.1:8765:8765"]
     for name, service in services.items():
         if name != "core":
             assert "ports" not in service, f"{name} is reached through the core, not published"

@@ -39,6 +39,10 @@ def worker_env(core_url: str | None = None, **extra: str) -> dict[str, str]:
     env = dict(os.environ)
     env["SKYDECK_LOG_LEVEL"] = "WARNING"
     env["PYTHONUNBUFFERED"] = "1"
+    # A core the bench starts leaves the well-known endpoint ports (9090, 8765) alone: other runs
+    # and a user's own launch may use them. The rosbridge rows give their core a free port.
+    env["SKYDECK_ROSBRIDGE_PORT"] = "0"
+    env["SKYDECK_FOXGLOVE_PORT"] = "0"
     if core_url is not None:
         env["SKYDECK_CORE_URL"] = core_url
     env.update(extra)
@@ -93,11 +97,15 @@ def wait_http(url: str, timeout_s: float, *, what: str, worker: Worker) -> None:
         raise BenchError(f"{what}: {error}") from None
 
 
-def start_core(name: str = "core") -> tuple[Worker, str]:
-    """A ``skydeck core`` on a free port, serving; returns the worker and its URL."""
+def start_core(name: str = "core", *, rosbridge_port: int = 0) -> tuple[Worker, str]:
+    """A ``skydeck core`` on a free port, serving; returns the worker and its URL.
+
+    Its protocol endpoints are off, but for rosbridge on ``rosbridge_port`` when one is given.
+    """
     port = free_port()
+    endpoints = ["--rosbridge-port", str(rosbridge_port), "--foxglove-port", "0"]
     worker = Worker(
-        name, "services.cli", "core", "--port", str(port), "--log-level", "warning", env=worker_env()
+        name, "services.cli", "core", "--port", str(port), "--log-level", "warning", *endpoints, env=worker_env()
     )
     url = f"http://127.0.0.1:{port}"
     try:

@@ -100,7 +100,8 @@ def measure_startup(*, seed: int = 1, fallback_only: bool = False) -> dict[str, 
     env.pop("SKYDECK_LOG_LEVEL", None)
     with httpx.Client(timeout=1.0) as client:
         if not fallback_only:
-            argv = [sys.executable, "-m", "services.cli", "launch", "--base-port", str(base), "--seed", str(seed)]
+            argv = [sys.executable, "-m", "services.cli", "launch", "--base-port", str(base), "--seed", str(seed),
+                    "--rosbridge-port", "0", "--foxglove-port", "0"]
             started = time.monotonic()
             launcher = Worker("launch", argv=argv, env=env)
             try:
@@ -121,7 +122,7 @@ def measure_startup(*, seed: int = 1, fallback_only: bool = False) -> dict[str, 
 
 def _manual_startup(client: httpx.Client, base: int, env: dict[str, str], seed: int) -> dict[str, Any]:
     cli = [sys.executable, "-m", "services.cli"]
-    commands = [("core", [*cli, "core", "--port", str(base)])]
+    commands = [("core", [*cli, "core", "--port", str(base), "--rosbridge-port", "0", "--foxglove-port", "0"])]
     for offset, name in enumerate(NODES, start=1):
         extra = ["--seed", str(seed)] if name == "sim" else []
         commands.append((name, [*cli, "run", name, "--port", str(base + offset), *extra]))

@@ -92,6 +92,7 @@ class Suite:
             self._startup(),
             self._registry(),
             self._viewers(),
+            self._rosbridge(),
         ]
         if self.plots:
             families += [self._throughput_by_size(), self._rtf_by_boxes()]
@@ -177,6 +178,54 @@ class Suite:
 
         return Family("topic_latency", trials, self.settings.topic_repetitions, summarise,
                       rows=("topic_latency_p50", "topic_latency_p99", "zenoh_latency_p50", "zenoh_latency_p99"))  # fmt: skip
+
+    # -- the rosbridge endpoint ---------------------------------------------------------------
+
+    def _rosbridge(self) -> Family:
+        from services.bench.bridges import ROSBRIDGE_RTT_MS, run_bridge_rtt, run_bridge_throughput
+
+        core = CoreHolder(rosbridge=True)
+        s = self.settings
+        trials = [
+            Trial(f"{mode}:{via}", f"{via} {mode}", lambda via=via, mode=mode: (  # type: ignore[misc]
+                run_bridge_throughput(via, core, duration_s=s.throughput_s) if mode == "throughput"
+                else run_bridge_rtt(via, core, duration_s=s.latency_s, rate_hz=s.latency_rate_hz)))
+            for mode in ("throughput", "rtt")
+            for via in ("rosbridge", "native")
+        ]  # fmt: skip
+
+        def summarise(readings: Readings) -> list[Result]:
+            rate = {via: median_of(readings[f"throughput:{via}"], "rate") for via in ("rosbridge", "native")}
+            rtt = {via: median_of(readings[f"rtt:{via}"], "p50_us") for via in ("rosbridge", "native")}
+            throughput = Result(
+                "rosbridge_throughput", rate["rosbridge"], "msg/s", "the core's native stream", rate["native"],
+                target=f">= 0.7x native and >= {10 * ROSBRIDGE_MSGS_S:,.0f} msg/s (10x rosbridge_suite's "
+                       f"{ROSBRIDGE_MSGS_S:,.0f})",
+                samples=[r["rate"] for r in readings["throughput:rosbridge"]],
+                detail={"delivered_fraction": median_of(readings["throughput:rosbridge"], "delivered"),
+                        "reference_samples": [r["rate"] for r in readings["throughput:native"]]},
+            )
+            throughput.met = (
+                throughput.ratio is not None and throughput.ratio >= 0.7 and rate["rosbridge"] >= 10 * ROSBRIDGE_MSGS_S
+            )
+            round_trip = Result(
+                "rosbridge_rtt_p50", rtt["rosbridge"] / 1000, "ms", "the core's native stream", rtt["native"] / 1000,
+                target=f"<= 1/0.7 x native and <= {ROSBRIDGE_RTT_MS / 10:g} ms (10x better than rosbridge_suite's "
+                       f"{ROSBRIDGE_RTT_MS:g} ms)",
+                samples=[r["p50_us"] / 1000 for r in readings["rtt:rosbridge"]],
+                detail={"p99_ms": median_of(readings["rtt:rosbridge"], "p99_us") / 1000,
+                        "rate": f"{s.latency_rate_hz:,.0f} msg/s",
+                        "path": "client -> core -> echo node -> core -> client"},
+            )
+            round_trip.met = (
+                round_trip.ratio is not None
+                and round_trip.ratio <= 1 / 0.7
+                and rtt["rosbridge"] / 1000 <= ROSBRIDGE_RTT_MS / 10
+            )
+            return [throughput, round_trip]
+
+        return Family("rosbridge", trials, s.topic_repetitions, summarise,
+                      rows=("rosbridge_throughput", "rosbridge_rtt_p50"), close=core.close)  # fmt: skip
 
     def _throughput_by_size(self) -> Family:
         trials = [

@@ -35,15 +35,22 @@ class TopicRun:
 
 
 class CoreHolder:
-    """A Skydeck core started on first use and kept for the rest of a benchmark family."""
+    """A Skydeck core started on first use and kept for the rest of a benchmark family (with
+    its rosbridge endpoint on a free port if ``rosbridge``: ``rosbridge_url``)."""
 
-    def __init__(self) -> None:
+    def __init__(self, *, rosbridge: bool = False) -> None:
         self._worker: Worker | None = None
+        self._rosbridge = rosbridge
         self.url = ""
+        self.rosbridge_url = ""
 
     def get(self) -> str:
         if self._worker is None:
-            self._worker, self.url = start_core("bench-core")
+            from services.bench.processes import free_port
+
+            port = free_port() if self._rosbridge else 0
+            self._worker, self.url = start_core("bench-core", rosbridge_port=port)
+            self.rosbridge_url = f"ws://127.0.0.1:{port}" if port else ""
         return self.url
 
     def cpu_seconds(self) -> float:

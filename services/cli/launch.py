@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from services.cli.run import add_endpoint_flags
+
 __all__ = ["add_parser"]
 
 
@@ -21,6 +23,7 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.add_argument("--boxes", type=int, help="drone world: number of boxes (default 8)")
     p.add_argument("--robots", type=int, help="robot world: number of robots, each in its namespace (default 1)")
     p.add_argument("--exclude", default="", help="nodes to leave out, comma-separated (e.g. perception,ai)")
+    add_endpoint_flags(p)
     p.set_defaults(func=_launch)
 
 
@@ -35,5 +38,10 @@ def _launch(args: argparse.Namespace) -> int:
         boxes=args.boxes,
         exclude=tuple(name.strip() for name in args.exclude.split(",") if name.strip()),
         robots=args.robots,
+        **{
+            key: value
+            for key, value in (("rosbridge_port", args.rosbridge_port), ("foxglove_port", args.foxglove_port))
+            if value is not None
+        },
     )
     return run_launch(args.file, options)  # a LaunchError is printed as one line by main

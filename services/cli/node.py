@@ -34,6 +34,8 @@ def _info(args: argparse.Namespace) -> int:
     types.update({s["name"]: s["type"] for s in graph["services"]})
     print("-" * 80)
     print(f"Node [{node['name']}]\nURI: {node['url']}\nPid: {node['pid']}")
+    if node.get("client"):  # a client of the core shown as a node (rosbridge, Foxglove)
+        print(f"Client: {node['client']}")
     for title, key in (("Publications", "publications"), ("Subscriptions", "subscriptions"), ("Services", "services")):
         print(f"\n{title}:")
         if not node[key]:

@@ -17,6 +17,7 @@ __all__ = ["add_parsers"]
 def add_parsers(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     core = subparsers.add_parser("core", help="run the core: registry, gateway, dashboard (like roscore)")
     _add_server_flags(core, default_port=8000)
+    add_endpoint_flags(core)
     core.set_defaults(func=_core)
 
     run = subparsers.add_parser(
@@ -41,6 +42,16 @@ def _add_server_flags(parser: argparse.ArgumentParser, *, default_port: int | No
     parser.add_argument("--log-level", choices=["debug", "info", "warning", "error"], help="default info")
 
 
+def add_endpoint_flags(parser: argparse.ArgumentParser) -> None:
+    """``--rosbridge-port`` and ``--foxglove-port`` (``skydeck core`` and ``skydeck launch``)."""
+    parser.add_argument(
+        "--rosbridge-port", type=_port, help="rosbridge v2 endpoint for roslibjs/roslibpy (default 9090; 0: off)"
+    )
+    parser.add_argument(
+        "--foxglove-port", type=_port, help="Foxglove WebSocket endpoint for Foxglove/Lichtblick (default 8765; 0: off)"
+    )
+
+
 def _port(text: str) -> int:
     if not text.isdigit() or not 0 <= int(text) <= 65535:
         raise argparse.ArgumentTypeError(f"expected a port number 0-65535, got {text!r}")
@@ -59,6 +70,8 @@ def _apply_flags(args: argparse.Namespace) -> None:
         core_url=getattr(args, "core_url", None),
         log_level=args.log_level,
         use_sim_time=True if getattr(args, "use_sim_time", False) else None,
+        rosbridge_port=getattr(args, "rosbridge_port", None),
+        foxglove_port=getattr(args, "foxglove_port", None),
     )
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import socket
 from collections.abc import AsyncIterator
 from pathlib import Path
 from typing import Any
@@ -24,10 +25,18 @@ from starlette.routing import Route, WebSocketRoute
 from services.core.api import router as api_router
 from services.core.core_node import CORE_NODE, CORE_NODE_PATH, CoreNode
 from services.core.gateway import Gateway, ServiceCallsFirst
+from services.core.guests import Guests
 from services.core.openapi import aggregate_openapi
+from services.core.protocols.access import CoreAccess
+from services.core.protocols.foxglove import FoxgloveEndpoint
+from services.core.protocols.rosapi import host_rosapi
+from services.core.protocols.rosbridge import RosbridgeEndpoint
+from services.core.protocols.servers import EndpointServers, bind_endpoints
 from services.core.registry import Registry
+from services.core.service_calls import ServiceCalls
 from services.core.sessions import serve_session
 from services.core.settings import CoreSettings
+from services.runtime.auth import NOT_AUTHORISED, token_matches
 from services.runtime.edge.frames import FrameRejected
 from services.runtime.edge.topic_socket import serve_topic_socket
 from services.runtime.http_client import HttpClient
@@ -45,8 +54,15 @@ _SWAGGER_DIR = _WEB_UI / "vendor" / "node_modules" / "swagger-ui-dist"
 _THREE_DIR = _WEB_UI / "vendor" / "node_modules" / "three"  # the 3D view's library (ES modules)
 
 
-def create_app(settings: CoreSettings | None = None) -> FastAPI:
-    """The core as an ASGI app; ``settings.advertise_url`` (or host/port) is where nodes reach it."""
+def create_app(
+    settings: CoreSettings | None = None, *, endpoint_sockets: dict[str, socket.socket] | None = None
+) -> FastAPI:
+    """The core as an ASGI app; ``settings.advertise_url`` (or host/port) is where nodes reach it.
+
+    The protocol endpoints (rosbridge, Foxglove) listen on their own ports while the app runs:
+    on ``endpoint_sockets`` if given (``skydeck core`` binds them first, to report a port in use
+    as one line), else on sockets bound at start-up from ``settings``.
+    """
     settings = settings or CoreSettings()
     registry = Registry()
     core_url = settings.advertise_url or f"http://{reachable_host(settings.host)}:{settings.port}"
@@ -56,11 +72,24 @@ def create_app(settings: CoreSettings | None = None) -> FastAPI:
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
         http = HttpClient()
         core_node.start()
+        guests = Guests(registry, core_node.participant.url)
+        calls = ServiceCalls(registry, guests, settings, http)
+        gateway = Gateway(registry, core_node, settings, http, calls)
+        access = CoreAccess(core_node, registry, guests, calls, gateway, settings)
+        host_rosapi(access)
         app.state.http = http
-        app.state.gateway = Gateway(registry, core_node, settings, http)
+        app.state.gateway = gateway
+        app.state.calls = calls
+        app.state.rosbridge = RosbridgeEndpoint(access)
+        app.state.foxglove = FoxgloveEndpoint(access)
+        endpoints = EndpointServers(settings, endpoint_sockets if endpoint_sockets is not None else bind_endpoints(settings))
+        app.state.endpoints = endpoints
+        await endpoints.start({"rosbridge": app.state.rosbridge.serve, "foxglove": app.state.foxglove.serve})
         try:
             yield
         finally:
+            await endpoints.stop()
+            app.state.foxglove.close()
             core_node.stop()
             await http.aclose()
 
@@ -112,6 +141,20 @@ def create_app(settings: CoreSettings | None = None) -> FastAPI:
         if endpoint is None or not endpoint.publishing or endpoint.latest_frame is None:
             return JSONResponse({"detail": f"the core does not publish {request.url.path}"}, status_code=404)
         return Response(endpoint.latest_frame, media_type="application/json")
+
+    @app.post(CORE_NODE_PATH + "/{name:path}", include_in_schema=False)
+    async def core_service(request: Request) -> Response:
+        """A service the core hosts for a guest (rosapi, a rosbridge client's), called directly."""
+        if not token_matches(settings.token, request):
+            return JSONResponse({"detail": NOT_AUTHORISED}, status_code=401)
+        name = request.scope["path"].removeprefix(CORE_NODE_PATH)
+        reply = await request.app.state.calls.call_hosted(name, await request.body())
+        return Response(reply.body, status_code=reply.status, media_type=reply.content_type)
+
+    @app.websocket("/rosbridge")
+    async def rosbridge(websocket: WebSocket) -> None:
+        """The rosbridge v2 endpoint on the core's own port (also on --rosbridge-port)."""
+        await websocket.app.state.rosbridge.serve(websocket)
 
     @app.websocket(CORE_NODE_PATH + "/{topic:path}")
     async def core_publication(websocket: WebSocket) -> None:

@@ -1,9 +1,14 @@
 """A topic as the core's clients see it: ``ws://CORE/TOPIC``, a TopicPort on the core node.
 
-Reading gets every frame on the topic, from every publisher, as received; frames the socket
-publishes go to every subscriber and every other reader, never back to itself (no echo). The
-first valid frame fixes the socket's type: the topic's type in the registry, or ``?type=`` for a
-topic nobody has declared yet.
+Reading gets every frame on the topic, from every publisher, as received; frames a client
+publishes go to every subscriber and every other reader, never back to the client itself (no
+echo). The first valid frame fixes the client's type: the topic's type in the registry, or the
+declared one (``?type=``, rosbridge's ``advertise``) for a topic nobody has declared yet.
+
+The native socket uses the three TopicPort calls; the protocol adapters, whose clients read and
+publish one topic with separate lifetimes on one connection, use the four calls underneath
+(``start_reading``, ``stop_reading``, ``publish``, ``stop_publishing``). Either way a frame is
+validated, published and kept from echoing here and nowhere else.
 """
 
 from __future__ import annotations
@@ -12,7 +17,7 @@ from services.core.core_node import CoreNode
 from services.core.registry import Registry
 from services.runtime.edge.encoding import decode
 from services.runtime.edge.frames import FrameRejected
-from services.runtime.edge.outbox import Frame
+from services.runtime.edge.outbox import Frame, Outbox
 from services.runtime.edge.topic_socket import TopicConnection
 from services.runtime.endpoint import TopicEndpoint
 from services.runtime.wire import Close
@@ -35,7 +40,7 @@ def declared_type(type_name: str | None) -> type[Message] | None:
 
 
 class GatewayTopic:
-    """One client socket's view of one topic through the core node."""
+    """One client's view of one topic through the core node."""
 
     def __init__(self, core: CoreNode, registry: Registry, name: str, declared: type[Message] | None) -> None:
         self.name = name
@@ -43,33 +48,55 @@ class GatewayTopic:
         self._registry = registry
         self._declared = declared
         self._type: type[Message] | None = None  # fixed by the first valid frame
-        self._endpoint: TopicEndpoint | None = None  # the core's, once this socket publishes
+        self._endpoint: TopicEndpoint | None = None  # the core's, once this client publishes
 
-    def open(self, connection: TopicConnection) -> Frame | None:
-        if connection.outbox is None:
-            return None
-        endpoint = self._core.start_reading(self.name, connection.outbox)
+    # -- reading and publishing (what every client of the core does) ----------------------------
+
+    def start_reading(self, outbox: Outbox) -> Frame | None:
+        """Frames on the topic go to ``outbox`` from now on; returns the latched frame, if any
+        (in the outbox's encoding)."""
+        endpoint = self._core.start_reading(self.name, outbox)
         if endpoint.latest is not None and (endpoint.publishing or self._registry.is_latched(self.name)):
-            return endpoint.latest.get(connection.encoding)
+            return endpoint.latest.get(outbox.encoding)
         return None
 
-    def receive_frame(self, connection: TopicConnection, frame: Frame) -> None:
-        msg_type = self._type or self._topic_type()
+    def stop_reading(self, outbox: Outbox) -> None:
+        self._core.stop_reading(self.name, outbox)
+
+    def advertise(self) -> None:
+        """Publish the topic from now on, before the first frame (rosbridge's and Foxglove's
+        advertise), so subscribers link to the core while the client gets ready."""
+        if self._endpoint is None:
+            msg_type = self.message_type()
+            self._endpoint = self._core.start_publishing(self.name, msg_type)
+            self._type = msg_type
+
+    def publish(self, frame: Frame, sender: Outbox | None) -> bool:
+        """Validate ``frame`` (JSON text, or msgpack bytes) and publish it through the core node, to everyone but ``sender``.
+
+        Raises FrameRejected (1007 for a frame of the wrong type, 1008 for a topic with no
+        type). Returns True for this client's first frame (the core started publishing for it).
+        """
+        msg_type = self._type or self.message_type()
         msg = decode(frame, msg_type, msg_type.__ros_type__)  # before publishing: a bad first frame opens nothing
         endpoint = self._endpoint
+        first = endpoint is None
         if endpoint is None:
             endpoint = self._endpoint = self._core.start_publishing(self.name, msg_type)
             self._type = msg_type
-            connection.published = True
-        endpoint.dispatch(msg, endpoint.frames_of(msg, frame), connection.outbox)
+        endpoint.dispatch(msg, endpoint.frames_of(msg, frame), sender)
+        return first
 
-    def close(self, connection: TopicConnection) -> None:
-        if connection.outbox is not None:
-            self._core.stop_reading(self.name, connection.outbox)
-        if connection.published:
+    def stop_publishing(self) -> None:
+        """This client publishes no more (the topic lingers, latched, as for a closed socket)."""
+        if self._endpoint is not None:
+            self._endpoint = None
             self._core.stop_publishing(self.name)
 
-    def _topic_type(self) -> type[Message]:
+    def message_type(self) -> type[Message]:
+        """The type a frame published here must have; FrameRejected(1008) when none is known."""
+        if self._type is not None:
+            return self._type
         known = self._registry.topic_type(self.name)
         declared = self._declared
         if known is None:
@@ -85,3 +112,18 @@ class GatewayTopic:
         except UnknownInterfaceError:
             raise FrameRejected(Close.POLICY, f"the core does not know {known}: publish to the node directly") from None
         return msg_type  # type: ignore[return-value]
+
+    # -- the native socket (TopicPort) ----------------------------------------------------------
+
+    def open(self, connection: TopicConnection) -> Frame | None:
+        return None if connection.outbox is None else self.start_reading(connection.outbox)
+
+    def receive_frame(self, connection: TopicConnection, frame: Frame) -> None:
+        if self.publish(frame, connection.outbox):
+            connection.published = True
+
+    def close(self, connection: TopicConnection) -> None:
+        if connection.outbox is not None:
+            self.stop_reading(connection.outbox)
+        if connection.published:
+            self.stop_publishing()

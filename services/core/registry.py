@@ -53,6 +53,16 @@ class Registry:
         self._publishers: dict[str, dict[str, None]] = {}
         self._subscribers: dict[str, dict[str, None]] = {}
         self._services: dict[str, str] = {}  # service -> the node hosting it
+        self._watchers: list[Callable[[], None]] = []
+
+    def watch(self, on_change: Callable[[], None]) -> Callable[[], None]:
+        """Call ``on_change()`` after every change of the graph; returns what stops it."""
+        self._watchers.append(on_change)
+        return lambda: self._watchers.remove(on_change)
+
+    def _notify(self) -> None:
+        for on_change in list(self._watchers):
+            on_change()
 
     # -- changes ------------------------------------------------------------------------------
 
@@ -64,6 +74,7 @@ class Registry:
         record = self.nodes[description.name] = NodeRecord(description, inbox)
         self._index(description)
         self._changed(previous.description if previous else None, record)
+        self._notify()
         return previous if previous is not None and previous.inbox != inbox else None
 
     def update(self, description: NodeDescription, inbox: Inbox) -> None:
@@ -76,6 +87,7 @@ class Registry:
         record.description = description
         self._index(description)
         self._changed(previous, record)
+        self._notify()
 
     def unregister(self, name: str, inbox: Inbox) -> None:
         """A session ended: remove its node (unless a newer session took the name)."""
@@ -85,6 +97,7 @@ class Registry:
         del self.nodes[name]
         self._unindex(record.description)
         self._tell_subscribers(_names(record.description.publications))
+        self._notify()
 
     def record_stats(self, name: str, published: dict[str, int]) -> None:
         """Turn a node's cumulative publish counts into rates."""
@@ -201,6 +214,7 @@ class Registry:
                 "publications": [e.name for e in description.publications],
                 "subscriptions": [e.name for e in description.subscriptions],
                 "services": [e.name for e in description.services],
+                **({"client": description.client} if description.client else {}),
             })
             for role, entities in (("publishers", description.publications), ("subscribers", description.subscriptions)):
                 for entity in entities:

@@ -11,6 +11,7 @@ from collections.abc import Iterator
 import uvicorn
 
 from services.core.app import create_app
+from services.core.protocols.servers import bind_endpoints
 from services.core.settings import CoreSettings
 from services.runtime.executor import configure_logging, run
 
@@ -38,14 +39,20 @@ class _Server(uvicorn.Server):
 
 
 def serve(settings: CoreSettings | None = None) -> None:
-    """Serve the core until Ctrl-C or SIGTERM."""
+    """Serve the core until Ctrl-C or SIGTERM.
+
+    The protocol endpoints' ports are bound first: one in use raises EndpointPortBusy, which the
+    CLI prints as one line.
+    """
     settings = settings or CoreSettings()
     configure_logging(settings.log_level)
-    logging.getLogger("skydeck.core").info(
-        "core at http://%s:%d (dashboard /, every command /docs)", settings.host, settings.port
-    )
+    endpoint_sockets = bind_endpoints(settings)
+    log = logging.getLogger("skydeck.core")
+    log.info("core at http://%s:%d (dashboard /, every command /docs)", settings.host, settings.port)
+    for name, sock in endpoint_sockets.items():
+        log.info("%s endpoint at ws://%s:%d", name, settings.host, sock.getsockname()[1])
     config = uvicorn.Config(
-        create_app(settings),
+        create_app(settings, endpoint_sockets=endpoint_sockets),
         host=settings.host,
         port=settings.port,
         log_level="warning",

@@ -15,6 +15,7 @@ import dataclasses
 import math
 import random
 import sys
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from services.launch.errors import LaunchError
@@ -31,6 +32,11 @@ __all__ = [
 ]
 
 DEFAULT_BASE_PORT = 8000
+# The core's protocol endpoints: flag, LaunchOptions field, the core's variable, its default.
+_ENDPOINTS = (
+    ("--rosbridge-port", "rosbridge_port", "SKYDECK_ROSBRIDGE_PORT", 9090),
+    ("--foxglove-port", "foxglove_port", "SKYDECK_FOXGLOVE_PORT", 8765),
+)
 _MAX_SEED = 2**32 - 1
 # The simulator's default (sim_server.limits.DEFAULT_BOXES, pinned by a test): importing
 # sim_server would load PyBullet into the launcher, which never simulates anything.
@@ -52,10 +58,17 @@ class LaunchOptions:
     boxes: int | None = None
     exclude: tuple[str, ...] = ()
     robots: int | None = None
+    # The core's protocol endpoints (0: off; None: the core's setting, SKYDECK_ROSBRIDGE_PORT or
+    # 9090); not shifted by --base-port: they are the ports the tools' users already know.
+    rosbridge_port: int | None = None
+    foxglove_port: int | None = None
 
     def __post_init__(self) -> None:
         if not 1 <= self.base_port <= 65535:
             raise LaunchError(f"--base-port must be a port number 1-65535, got {self.base_port}")
+        for flag, port in (("--rosbridge-port", self.rosbridge_port), ("--foxglove-port", self.foxglove_port)):
+            if port is not None and not 0 <= port <= 65535:
+                raise LaunchError(f"{flag} must be a port number 0-65535 (0: off), got {port}")
         if self.speed != "max":
             try:
                 speed = float(self.speed)
@@ -75,6 +88,19 @@ class LaunchOptions:
         if self.seed is not None:
             return self
         return dataclasses.replace(self, seed=random.SystemRandom().randrange(_MAX_SEED + 1))
+
+    def endpoint_ports(self, environ: Mapping[str, str]) -> dict[str, int]:
+        """The ports the core's protocol endpoints will listen on (those that are on), by the
+        flag that sets each: the option, else the core's ``SKYDECK_*`` setting in ``environ``."""
+        ports = {}
+        for flag, given, variable, default in _ENDPOINTS:
+            port = getattr(self, given)
+            if port is None:
+                text = environ.get(variable, "")
+                port = int(text) if text.isdigit() else default
+            if port:
+                ports[flag] = port
+        return ports
 
     def placeholders(self) -> dict[str, str]:
         """The values of ``{speed}``, ``{boxes}``, ``{robots}``, ``{base_port}`` and (once set)
@@ -137,7 +163,16 @@ def plan_launch(spec: LaunchSpec, options: LaunchOptions) -> tuple[NodePlan, ...
     values = options.placeholders()
     nodes = [node for node in spec.nodes if node.name not in options.exclude]
     nodes.sort(key=lambda node: not node.is_core)  # stable: the core first, the rest as listed
-    return tuple(_plan(node, options.base_port, values) for node in nodes)
+    plans = [_plan(node, options.base_port, values) for node in nodes]
+    # The core's endpoint ports, when given, go in its environment (its settings read SKYDECK_*).
+    endpoints = {
+        variable: str(getattr(options, given))
+        for _, given, variable, _ in _ENDPOINTS
+        if getattr(options, given) is not None
+    }
+    return tuple(
+        dataclasses.replace(plan, env={**endpoints, **plan.env}) if plan.is_core and endpoints else plan for plan in plans
+    )
 
 
 def core_url(spec: LaunchSpec, options: LaunchOptions) -> str:

@@ -261,6 +261,15 @@ class Supervisor:
                     "node running? stop it or choose another --base-port",
                     node=plan.name,
                 )
+        if not any(plan.is_core for plan in self.plans):
+            return
+        for flag, port in self.options.endpoint_ports(os.environ).items():
+            if not port_is_free(port):
+                endpoint = flag.removeprefix("--").removesuffix("-port")
+                raise LaunchError(
+                    f"port {port} for the core's {endpoint} endpoint is already in use (another "
+                    f"Skydeck or {endpoint} server?): choose another with {flag} PORT, or {flag} 0 to turn it off"
+                )
 
     async def _start_first(self, child: _Child) -> None:
         plan = child.plan

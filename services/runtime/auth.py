@@ -21,7 +21,7 @@ __all__ = [
     "WEBSOCKET_CLIENT_LOGGER",
     "RedactTokens",
     "presented_token",
-    "token_equals",
+    "token_is_valid",
     "token_matches",
 ]
 
@@ -39,11 +39,11 @@ def presented_token(connection: HTTPConnection) -> str:
 
 def token_matches(expected: str, connection: HTTPConnection) -> bool:
     """Whether ``connection`` may act; always true when no token is configured."""
-    return token_equals(expected, presented_token(connection))
+    return token_is_valid(expected, presented_token(connection))
 
 
-def token_equals(expected: str, presented: str) -> bool:
-    """Whether ``presented`` is the token (compared in constant time); true when none is set."""
+def token_is_valid(expected: str, presented: str) -> bool:
+    """Whether ``presented`` is the token (in constant time); always true when none is configured."""
     if not expected:
         return True
     return hmac.compare_digest(presented.encode(), expected.encode())

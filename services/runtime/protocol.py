@@ -49,6 +49,9 @@ class NodeDescription(_Frame):
     name: str
     url: str
     pid: int
+    # Set for a client of the core that the graph shows as a node (a rosbridge or Foxglove
+    # connection: "rosbridge client 127.0.0.1:50312"); empty for a node.
+    client: str = ""
     publications: list[Entity] = []
     subscriptions: list[Entity] = []
     services: list[Entity] = []

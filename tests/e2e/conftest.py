@@ -69,11 +69,21 @@ def start_launch(
     for variable in unset:
         environment.pop(variable, None)
     process = BackgroundProcess(
-        [sys.executable, "-m", "services.cli", "launch", "--base-port", str(base), *args],
+        [sys.executable, "-m", "services.cli", "launch", "--base-port", str(base), *_endpoints_off(args), *args],
         name="skydeck launch",
         env=environment,
     )
     return process, f"http://127.0.0.1:{base}"
+
+
+def _endpoints_off(args: tuple[str, ...]) -> list[str]:
+    """The core's protocol endpoints off unless ``args`` set their ports (never 9090/8765 here)."""
+    return [
+        part
+        for flag in ("--rosbridge-port", "--foxglove-port")
+        if flag not in args
+        for part in (flag, "0")
+    ]
 
 
 def stop_launch(process: BackgroundProcess) -> None:

@@ -131,7 +131,7 @@ def test_cli_core_and_node_without_host_listen_on_loopback_only() -> None:
     env = {k: v for k, v in os.environ.items() if k != "SKYDECK_HOST"}
     env["SKYDECK_CORE_URL"] = f"http://127.0.0.1:{core_port}"
     commands = {
-        core_port: ["core", "--port", str(core_port)],
+        core_port: ["core", "--port", str(core_port), "--rosbridge-port", "0", "--foxglove-port", "0"],
         node_port: ["run", "control", "--port", str(node_port)],
     }
     processes = [

@@ -102,7 +102,7 @@ async def test_core_reaps_vanished_gateway_readers() -> None:
     port = free_port()
     env = {**os.environ, "SKYDECK_PING_INTERVAL_S": "0.2", "SKYDECK_PING_TIMEOUT_S": "0.3"}
     core = subprocess.Popen(
-        [sys.executable, "-m", "services.cli", "core", "--port", str(port)],
+        [sys.executable, "-m", "services.cli", "core", "--port", str(port), "--rosbridge-port", "0", "--foxglove-port", "0"],
         env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
     )
     core_url = f"http://127.0.0.1:{port}"

@@ -75,8 +75,8 @@ def test_reserved_prefixes_are_refused(prefix: str) -> None:
 
 
 def test_resolve_name_applies_the_reserved_check() -> None:
-    assert RESERVED_PREFIXES == ("/api", "/docs", "/redoc", "/openapi.json", "/static", "/health")
-    for name in ("/api", "/api/graph", "api/graph", "/docs", "/health/live", "static"):
+    assert RESERVED_PREFIXES == ("/api", "/docs", "/redoc", "/openapi.json", "/static", "/health", "/rosbridge")
+    for name in ("/api", "/api/graph", "api/graph", "/docs", "/health/live", "static", "/rosbridge"):
         with pytest.raises(InvalidNameError, match="reserved for the core's own routes"):
             resolve_name(name)
     with pytest.raises(InvalidNameError, match="reserved"):

@@ -47,9 +47,11 @@ class System:
         return f"ws://127.0.0.1:{self.base_port}"
 
     def start(self, name: str, args: list[str], port: int, *, env: dict[str, str] | None = None) -> Process:
-        """Run ``skydeck ARGS --port PORT`` and wait until its ``/health`` answers 200."""
+        """Run ``skydeck ARGS --port PORT`` and wait until its ``/health`` answers 200 (a core
+        without its protocol endpoints: the suite never binds their well-known ports)."""
+        endpoints = ["--rosbridge-port", "0", "--foxglove-port", "0"] if args[:1] == ["core"] else []
         background = BackgroundProcess(
-            [sys.executable, "-m", "services.cli", *args, "--port", str(port)],
+            [sys.executable, "-m", "services.cli", *args, "--port", str(port), *endpoints],
             name=f"`skydeck {' '.join(args)}`",
             cwd=REPO,
             env={**os.environ, "SKYDECK_CORE_URL": self.url, "PYTHONUNBUFFERED": "1", **(env or {})},

@@ -4,7 +4,8 @@
 - :mod:`.options`: ``?queue=&rate=&mode=``
 - :mod:`.encoding`: JSON text or msgpack, negotiated per connection; each made once per message
 - :mod:`.frames`: refusing a frame with a close code
-- :mod:`.pump`: the loop that writes an outbox to a socket and reads what the client sends
+- :mod:`.pump`: the loop that writes an outbox to a socket (``write_outbox``, also the protocol
+  adapters') and reads what the client sends
 - :mod:`.outbox`: a reader's bounded queue (oldest dropped: ROS's queue_size)
 - :mod:`.links`: the other direction, a subscriber's connection to a remote publisher
 """
@@ -14,9 +15,11 @@ from services.runtime.edge.frames import FrameRejected, close_with
 from services.runtime.edge.links import PublisherLink, stream_url
 from services.runtime.edge.options import Mode, StreamOptions
 from services.runtime.edge.outbox import Outbox
+from services.runtime.edge.pump import Encode, write_outbox
 from services.runtime.edge.topic_socket import TopicConnection, TopicPort, serve_topic_socket
 
 __all__ = [
+    "Encode",
     "Encoding",
     "FrameRejected",
     "Frames",
@@ -31,4 +34,5 @@ __all__ = [
     "encode",
     "serve_topic_socket",
     "stream_url",
+    "write_outbox",
 ]

@@ -13,8 +13,8 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import time
-from collections.abc import Callable, Coroutine
-from typing import Any
+from collections.abc import Callable, Coroutine, Sequence
+from typing import Any, cast
 
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
@@ -24,8 +24,7 @@ from services.runtime.edge.options import StreamOptions
 from services.runtime.edge.outbox import Frame, Outbox
 from services.runtime.wire import STALL_CHECK_PERIOD_S, Close
 
-__all__ = ["serve_stream"]
-
+__all__ = ["Encode", "serve_stream", "write_outbox"]
 
 
 async def serve_stream(
@@ -63,43 +62,72 @@ async def serve_stream(
 
 
 _Send = Callable[[Any], Coroutine[Any, Any, None]]
+ASGIMessage = dict[str, Any]
+Encode = Callable[[str], Sequence[ASGIMessage]]
+"""A protocol's form of one JSON frame: the ASGI ``websocket.send`` messages that carry it."""
+_Forms = Callable[[Frame], Sequence[ASGIMessage]]
 
 
-def _message(frame: Frame) -> dict[str, Any]:
+def _message(frame: Frame) -> ASGIMessage:
     if isinstance(frame, str):
         return {"type": "websocket.send", "text": frame}
     return {"type": "websocket.send", "bytes": frame}
 
 
+def _messages(frame: Frame) -> Sequence[ASGIMessage]:
+    return (_message(frame),)
+
+
 async def _write_frames(websocket: WebSocket, outbox: Outbox, options: StreamOptions, initial_frame: Frame | None) -> None:
-    send = websocket.send
-    eager = _EagerSend(send, outbox)
+    await write_outbox(websocket.send, outbox, rate_hz=options.rate_hz, initial_frame=initial_frame)
+
+
+async def write_outbox(
+    send: _Send,
+    outbox: Outbox,
+    *,
+    rate_hz: float | None = None,
+    initial_frame: Frame | None = None,
+    encode: Encode | None = None,
+) -> None:
+    """Write ``outbox`` with ``send`` (a WebSocket's ASGI send) until the socket is gone.
+
+    Frames go as they are (text or binary) unless ``encode`` turns each into a protocol's
+    messages (rosbridge's envelope, Foxglove's binary frame); a throttled reader (``rate_hz``)
+    gets the newest frame each period. Protocol adapters run one of these per subscription on
+    one socket: each write completes on its own, so frames of different subscriptions never
+    interleave. ``outbox.busy_since`` is set while a send waits for the socket (the stall watch).
+    """
+    # A protocol's reader has a JSON outbox (its frames are text), as its encoder expects.
+    forms: _Forms = _messages if encode is None else cast(_Forms, encode)
+    eager = _EagerSend(send, outbox, forms)
     try:
         with contextlib.suppress(WebSocketDisconnect, RuntimeError, OSError):
             if initial_frame is not None:
-                await _timed(send, outbox, initial_frame)
-            if options.rate_hz is None:
+                await _timed(send, outbox, initial_frame, forms)
+            if rate_hz is None:
                 while True:
                     outbox.send_now = eager  # only while idle: a frame must not overtake queued ones
                     frames = await outbox.drain()
                     outbox.send_now = None
                     await eager.settled()
                     for frame in frames:
-                        await _timed(send, outbox, frame)
+                        await _timed(send, outbox, frame, forms)
             else:
-                period_s = 1.0 / options.rate_hz
+                period_s = 1.0 / rate_hz
                 while True:
-                    await _timed(send, outbox, await outbox.latest())
+                    await _timed(send, outbox, await outbox.latest(), forms)
                     await asyncio.sleep(period_s)
     finally:
         outbox.send_now = None
         eager.cancel()
 
 
-async def _timed(send: _Send, outbox: Outbox, frame: Frame) -> None:
-    """One send, with ``outbox.busy_since`` set while it waits for the socket."""
+async def _timed(send: _Send, outbox: Outbox, frame: Frame, forms: _Forms) -> None:
+    """One frame's sends, with ``outbox.busy_since`` set while they wait for the socket."""
     outbox.busy_since = time.monotonic()
-    await send(_message(frame))
+    for message in forms(frame):
+        await send(message)
     outbox.busy_since = None
 
 
@@ -124,17 +152,22 @@ class _EagerSend:
     server writes to the transport), so its coroutine is stepped here, the way Python 3.12's
     eager tasks start: done in one step, nothing else happens. If it must wait (the transport
     paused writing), a task finishes it, and the writer waits for that task before sending more.
+    A frame that a protocol sends as several messages (fragments) is left to the writer.
     """
 
-    def __init__(self, send: _Send, outbox: Outbox) -> None:
+    def __init__(self, send: _Send, outbox: Outbox, forms: _Forms) -> None:
         self._send = send
         self._outbox = outbox
+        self._forms = forms
         self._pending: asyncio.Task[None] | None = None
 
     def __call__(self, frame: Frame) -> bool:
         if self._pending is not None:
             return False  # an earlier frame still waits for the socket: queue behind it
-        step = self._send(_message(frame))
+        messages = self._forms(frame)
+        if len(messages) != 1:
+            return False
+        step = self._send(messages[0])
         try:
             waiting_on = step.send(None)
         except StopIteration:

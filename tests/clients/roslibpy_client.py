@@ -1,0 +1,123 @@
+"""roslibpy (from PyPI) driving Skydeck's rosbridge endpoint: one scenario per run.
+
+    python roslibpy_client.py URL SCENARIO [TOKEN]
+
+Prints one JSON object per line for the test to check; ``hosted`` waits for a line on stdin
+before it ends (the test calls the hosted service meanwhile). Exit 0 when the scenario ran.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import threading
+import time
+
+import roslibpy
+
+
+def emit(**values: object) -> None:
+    print(json.dumps(values), flush=True)
+
+
+def first_message(ros: roslibpy.Ros, name: str, type_name: str, timeout_s: float = 10.0) -> dict:
+    got: list[dict] = []
+    ready = threading.Event()
+    topic = roslibpy.Topic(ros, name, type_name)
+
+    def received(message: dict) -> None:
+        if not got:
+            got.append(message)
+            ready.set()
+
+    topic.subscribe(received)
+    if not ready.wait(timeout_s):
+        raise SystemExit(f"no message on {name} within {timeout_s} s")
+    topic.unsubscribe()
+    return got[0]
+
+
+def tour(ros: roslibpy.Ros) -> None:
+    """What the issue lists: pose, cmd_vel, take_off, get_topics, rosapi without a slash."""
+    emit(pose=first_message(ros, "/drone/pose", "geometry_msgs/msg/PoseStamped"))
+    emit(latched=first_message(ros, "/drone/name", "std_msgs/msg/String"))
+    cmd_vel = roslibpy.Topic(ros, "/drone/cmd_vel", "geometry_msgs/msg/Twist")
+    cmd_vel.advertise()
+    time.sleep(1.0)  # as with ROS: subscribers connect to a new publisher in a moment
+    for x in (0.5, 1.0, 1.5):
+        cmd_vel.publish(roslibpy.Message({"linear": {"x": x, "y": 0.0, "z": 0.0}}))
+    emit(published=3)
+    take_off = roslibpy.Service(ros, "/control/take_off", "std_srvs/srv/Trigger")
+    emit(take_off=dict(take_off.call(roslibpy.ServiceRequest(), timeout=10)))
+    emit(again=dict(take_off.call(roslibpy.ServiceRequest(), timeout=10)))
+    emit(topics=ros.get_topics())
+    emit(topic_type=ros.get_topic_type("/drone/pose"))
+    emit(services=ros.get_services())
+    emit(nodes=ros.get_nodes())
+    relative = roslibpy.Service(ros, "rosapi/topics", "rosapi_msgs/srv/Topics")
+    emit(relative=dict(relative.call(roslibpy.ServiceRequest(), timeout=10)))
+    now = ros.get_time()  # roslibpy reads ROS 1's secs/nsecs
+    emit(time={"secs": now.secs, "nsecs": now.nsecs})
+    missing = roslibpy.Service(ros, "/no/such/service", "std_srvs/srv/Trigger")
+    try:
+        missing.call(roslibpy.ServiceRequest(), timeout=10)
+        emit(missing="answered?!")
+    except Exception as error:  # roslibpy raises ServiceException with the server's reason
+        emit(missing=str(error))
+    cmd_vel.unadvertise()
+
+
+def hosted(ros: roslibpy.Ros) -> None:
+    """Host /demo/set_light (std_srvs/SetBool) until told to stop."""
+    calls: list[dict] = []
+
+    def handler(request: dict, response: dict) -> bool:
+        calls.append(dict(request))
+        response["success"] = True
+        response["message"] = "light " + ("on" if request["data"] else "off")
+        emit(served=dict(request))
+        return True
+
+    service = roslibpy.Service(ros, "/demo/set_light", "std_srvs/srv/SetBool")
+    service.advertise(handler)
+    time.sleep(0.5)  # the advertise op travels before the test calls
+    emit(advertised="/demo/set_light")
+    sys.stdin.readline()
+    service.unadvertise()
+    emit(calls=len(calls))
+
+
+def workshop(ros: roslibpy.Ros) -> None:
+    """The real workshop system: read the pose, take off, watch the drone climb."""
+    emit(pose=first_message(ros, "/drone/pose", "geometry_msgs/msg/PoseStamped"))
+    take_off = roslibpy.Service(ros, "/control/take_off", "std_srvs/srv/Trigger")
+    emit(take_off=dict(take_off.call(roslibpy.ServiceRequest(), timeout=10)))
+    climbed = threading.Event()
+    heights: list[float] = []
+
+    def follow(message: dict) -> None:
+        heights.append(message["pose"]["position"]["z"])
+        if heights[-1] > 2.0:
+            climbed.set()
+
+    pose = roslibpy.Topic(ros, "/drone/pose", "geometry_msgs/msg/PoseStamped", throttle_rate=100)
+    pose.subscribe(follow)
+    emit(climbed=climbed.wait(60), top=max(heights, default=0.0))
+    pose.unsubscribe()
+    emit(topics=ros.get_topics())
+
+
+def main() -> None:
+    url, scenario = sys.argv[1], sys.argv[2]
+    headers = {"Authorization": f"Bearer {sys.argv[3]}"} if len(sys.argv) > 3 else None
+    ros = roslibpy.Ros(url, headers=headers)
+    ros.run(timeout=15)
+    emit(connected=ros.is_connected)
+    try:
+        {"tour": tour, "hosted": hosted, "workshop": workshop}[scenario](ros)
+    finally:
+        ros.terminate()
+
+
+if __name__ == "__main__":
+    main()

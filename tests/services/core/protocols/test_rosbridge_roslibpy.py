@@ -1,0 +1,57 @@
+"""rosbridge with roslibpy, the Python client users have (PyPI, pinned in requirements.lock)."""
+
+from __future__ import annotations
+
+import asyncio
+
+import pytest
+
+from tests.conftest import wait_until
+from tests.services.core.protocols.conftest import Bridge
+
+pytestmark = pytest.mark.timeout(90)
+
+
+async def test_roslibpy_reads_publishes_calls_and_lists(bridge: Bridge) -> None:
+    client = await bridge.client("roslibpy_client.py", bridge.rosbridge_url, "tour")
+    assert (await client.line())["connected"] is True
+    pose = (await client.expect("pose"))["pose"]
+    assert pose["header"]["frame_id"] == "map" and pose["pose"]["position"]["y"] == 2.0
+    assert (await client.expect("latched"))["latched"] == {"data": "iris"}  # a late subscriber gets it
+    await client.expect("published")
+    await wait_until(lambda: len(bridge.drone.commands) == 3, what="the three cmd_vel messages")
+    assert [c.linear.x for c in bridge.drone.commands] == [0.5, 1.0, 1.5]
+    assert (await client.expect("take_off"))["take_off"] == {"success": True, "message": "All ok!"}
+    assert (await client.expect("again"))["again"]["success"] is False  # a refusal is an answer
+    topics = (await client.expect("topics"))["topics"]
+    assert {"/drone/pose", "/drone/cmd_vel", "/drone/name"} <= set(topics)
+    assert (await client.expect("topic_type"))["topic_type"] == "geometry_msgs/msg/PoseStamped"
+    assert {"/control/take_off", "/rosapi/topics"} <= set((await client.expect("services"))["services"])
+    nodes = (await client.expect("nodes"))["nodes"]
+    assert {"/drone", "/rosapi", "/skydeck_core"} <= set(nodes)
+    assert any(name.startswith("/rosbridge_client_") for name in nodes)  # the client itself
+    relative = (await client.expect("relative"))["relative"]
+    assert relative["topics"] == topics and relative["types"][topics.index("/drone/pose")] == (
+        "geometry_msgs/msg/PoseStamped"
+    )
+    assert (await client.expect("time"))["time"]["secs"] >= 100  # /clock's time, ROS 1 names
+    assert "no service /no/such/service" in (await client.expect("missing"))["missing"]
+    await client.finish()
+
+
+async def test_a_service_hosted_by_roslibpy_is_called_with_curl_through_the_core(bridge: Bridge) -> None:
+    client = await bridge.client("roslibpy_client.py", bridge.rosbridge_url, "hosted")
+    await client.expect("advertised")
+    service = bridge.core.registry.service("/demo/set_light")
+    assert service is not None and service[1].description.name.startswith("/rosbridge_client_")
+    curl = await asyncio.create_subprocess_exec(
+        "curl", "-sS", "-X", "POST", "-H", "content-type: application/json", "-d", '{"data": true}',
+        bridge.core_url + "/demo/set_light", stdout=asyncio.subprocess.PIPE,
+    )  # fmt: skip
+    out, _ = await asyncio.wait_for(curl.communicate(), 20)
+    assert out.decode() == '{"success":true,"message":"light on"}'
+    assert (await client.expect("served"))["served"] == {"data": True}
+    await client.go_on()
+    assert (await client.expect("calls"))["calls"] == 1
+    await client.finish()
+    await wait_until(lambda: bridge.core.registry.service("/demo/set_light") is None, what="the service to go")
