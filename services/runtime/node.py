@@ -24,7 +24,7 @@ from services.runtime.server import AppServer
 from services.runtime.service import Service
 from services.runtime.session import CoreSession, RegistrationRejected
 from services.runtime.settings import NodeSettings, process_settings, reachable_host
-from services.runtime.subscription import Subscription
+from services.runtime.subscription import RawSubscription, Subscription
 from services.runtime.timer import Timer
 from shared_models import Message, ServiceType, resolve_name, resolve_node_name
 from shared_models.builtin_interfaces import Time
@@ -128,11 +128,26 @@ class Node:
         return publisher
 
     def create_subscription(
-        self, msg_type: type[M], topic: str, callback: Callable[[M], Any], qos_profile: int = 10
-    ) -> Subscription:
-        """Call ``callback(msg)`` for every message on ``topic``; ``qos_profile`` is the queue depth."""
+        self,
+        msg_type: type[M],
+        topic: str,
+        callback: Callable[[M], Any],
+        qos_profile: int = 10,
+        *,
+        raw: bool = False,
+    ) -> Subscription | RawSubscription:
+        """Call ``callback(msg)`` for every message on ``topic``; ``qos_profile`` is the queue depth.
+
+        ``raw=True`` (as rclpy's): ``callback(frame)`` gets each message's JSON text as received,
+        unparsed; it runs where the frame arrives, so it must be quick (a recorder's write).
+        """
         self._check_alive()
         endpoint = self._participant.endpoint(msg_type, topic)
+        if raw:
+            tap = RawSubscription(endpoint.name, msg_type, callback, _depth(qos_profile))  # type: ignore[arg-type]
+            endpoint.taps.add(tap)
+            self._changed()
+            return tap
         subscription = Subscription(endpoint.name, msg_type, callback, _depth(qos_profile))
         endpoint.subscriptions.append(subscription)
         self._subscriptions.append(subscription)

@@ -19,6 +19,7 @@ from services.runtime.errors import NodeError
 from services.runtime.protocol import Entity, NodeDescription, PublisherAddress
 from services.runtime.service import Service
 from services.runtime.settings import ProcessSettings
+from services.runtime.subscription import RawSubscription
 from shared_models import Message, resolve_name
 
 __all__ = ["Participant"]
@@ -130,7 +131,9 @@ class Participant:
             self.links.pop(key)[1].cancel()
         if not wanted or endpoint is None or self._spawn is None:
             return
-        queue_size = max((s.queue_size for s in endpoint.subscriptions), default=100)
+        depths = [s.queue_size for s in endpoint.subscriptions]
+        depths += [tap.queue_size for tap in endpoint.taps if isinstance(tap, RawSubscription)]
+        queue_size = max(depths, default=100)
         for url in wanted:
             if (topic, url) not in self.links:
                 link = PublisherLink(
