@@ -14,7 +14,7 @@
 
 from services.bag.errors import BagError, BagFileError
 from services.bag.info import format_info, format_size
-from services.bag.player import PlayOptions, Player, check_types
+from services.bag.player import Player, PlayOptions, check_types
 from services.bag.reader import BagMessage, BagReader, BagSummary, TopicSummary
 from services.bag.recorder import Recorder
 from services.bag.recording import Limits, Recording, TopicSelection

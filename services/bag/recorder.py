@@ -41,12 +41,12 @@ class Recorder(Node):
         writer: BagWriter,
         selection: TopicSelection,
         *,
-        limits: Limits = Limits(),
+        limits: Limits | None = None,
         settings: NodeSettings | None = None,
         say: Callable[[str], None] = lambda _: None,
     ) -> None:
         super().__init__(f"bag_record_{os.getpid()}", settings=settings)
-        self.recording = Recording(writer, selection, self._subscribe_raw, limits=limits, say=say)
+        self.recording = Recording(writer, selection, self._subscribe_raw, limits=limits or Limits(), say=say)
         self._say = say
         self._said_missing = False
         self.create_timer(DISCOVERY_PERIOD_S, self._discover, wall_clock=True)

@@ -27,7 +27,13 @@ from typing import IO
 from mcap.writer import CompressionType, Writer
 
 from services.bag.errors import BagError
-from services.bag.schemas import MESSAGE_ENCODING, PROFILE, SCHEMA_ENCODING, message_type, schema_bytes
+from services.bag.schemas import (
+    MESSAGE_ENCODING,
+    PROFILE,
+    SCHEMA_ENCODING,
+    message_type,
+    schema_bytes,
+)
 
 __all__ = ["METADATA_NAME", "BagWriter", "bag_path"]
 

@@ -157,7 +157,7 @@ def _warn_if_recovered(reader: Any) -> None:
 
 
 def _play(args: argparse.Namespace) -> int:
-    from services.bag import BagReader, PlayOptions, Player, check_types
+    from services.bag import BagReader, Player, PlayOptions, check_types
     from services.bag.keyboard import space_bar
 
     options = PlayOptions(

@@ -131,7 +131,7 @@ class Node:
         self,
         msg_type: type[M],
         topic: str,
-        callback: Callable[[M], Any],
+        callback: Callable[[M], Any] | Callable[[str], Any],
         qos_profile: int = 10,
         *,
         raw: bool = False,
