@@ -20,6 +20,7 @@ from services.runtime.protocol import Entity, NodeDescription, PublisherAddress
 from services.runtime.service import Service
 from services.runtime.settings import ProcessSettings
 from services.runtime.subscription import RawSubscription
+from services.runtime.wire import MAX_QUEUE
 from shared_models import Message, resolve_name
 
 __all__ = ["Participant"]
@@ -133,7 +134,7 @@ class Participant:
             return
         depths = [s.queue_size for s in endpoint.subscriptions]
         depths += [tap.queue_size for tap in endpoint.taps if isinstance(tap, RawSubscription)]
-        queue_size = max(depths, default=100)
+        queue_size = min(max(depths, default=100), MAX_QUEUE)  # a publisher keeps at most MAX_QUEUE per reader
         for url in wanted:
             if (topic, url) not in self.links:
                 link = PublisherLink(
