@@ -25,6 +25,7 @@ _REPO = Path(__file__).resolve().parents[2]
 _DEFAULT_PORTS = {8000: "core", 8001: "sim", 8002: "perception", 8003: "control", 8004: "ai", 9090: "rosbridge", 8765: "Foxglove"}
 _CHROMIUM = Path("/usr/bin/chromium")
 _MAX_SKEW_S = 2.0
+_NEEDED_PYTHON = (3, 11)  # a tuple here, not in the test: an older Python must be told, not fail to parse
 
 
 @dataclass(frozen=True)
@@ -57,7 +58,7 @@ def _doctor(args: argparse.Namespace) -> int:
 
 def _python() -> list[Check]:
     found = ".".join(str(part) for part in sys.version_info[:3])
-    if sys.version_info[:2] >= (3, 11):
+    if sys.version_info[:2] >= _NEEDED_PYTHON:
         return [Check("ok", f"Python {found}")]
     return [Check("FAIL", f"Python {found}: Skydeck needs 3.11 or newer", "install Python 3.11 and run `make install`")]
 
