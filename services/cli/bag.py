@@ -67,7 +67,9 @@ def _seconds(text: str) -> float:
 
 
 def _record(args: argparse.Namespace) -> int:
-    from services.bag import BagWriter, Limits, Recorder, TopicSelection, bag_path
+    from services.bag.recorder import Recorder
+    from services.bag.recording import Limits, TopicSelection
+    from services.bag.writer import BagWriter, bag_path
 
     if args.all and args.topics:
         raise CliError("give topics to record or -a for all of them, not both")
@@ -135,7 +137,8 @@ def _latest(topic: str) -> dict[str, Any] | None:
 
 
 def _info(args: argparse.Namespace) -> int:
-    from services.bag import BagReader, format_info
+    from services.bag.info import format_info
+    from services.bag.reader import BagReader
 
     with BagReader(args.file) as reader:
         print(format_info(reader.summary))
