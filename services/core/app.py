@@ -25,6 +25,8 @@ from services.core.api import router as api_router
 from services.core.core_node import CORE_NODE, CORE_NODE_PATH, CoreNode
 from services.core.gateway import Gateway
 from services.core.openapi import aggregate_openapi
+from services.core.recordings import Recordings, default_recordings_dir
+from services.core.recordings import router as recordings_router
 from services.core.registry import Registry
 from services.core.sessions import serve_session
 from services.core.settings import CoreSettings
@@ -57,9 +59,11 @@ def create_app(settings: CoreSettings | None = None) -> FastAPI:
         core_node.start()
         app.state.http = http
         app.state.gateway = Gateway(registry, core_node, settings, http)
+        app.state.recordings = Recordings(settings.recordings_dir or default_recordings_dir(), core_node, registry)
         try:
             yield
         finally:
+            app.state.recordings.close()
             core_node.stop()
             await http.aclose()
 
@@ -82,6 +86,7 @@ def create_app(settings: CoreSettings | None = None) -> FastAPI:
     app.add_middleware(SameOriginOnly)
     install_error_handlers(app)
     app.include_router(api_router)
+    app.include_router(recordings_router)
 
     @app.get("/health", tags=["core"])
     async def health() -> dict[str, Any]:

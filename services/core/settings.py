@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from pydantic import Field
 
 from services.runtime.settings import ProcessSettings
@@ -19,3 +21,6 @@ class CoreSettings(ProcessSettings):
     # A topic published through the gateway stays advertised (and latched) this long after its
     # last publishing socket closed, so `topic pub --once` reaches subscribers that link late.
     gateway_linger_s: float = Field(default=2.0, ge=0)
+
+    # Recordings made from the dashboard (`/api/recordings`); None: $XDG_DATA_HOME/skydeck/recordings.
+    recordings_dir: Path | None = None
