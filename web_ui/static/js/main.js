@@ -12,6 +12,7 @@ import { Layers } from "./layers.js";
 import { LayersPanel } from "./layers_panel.js";
 import { MapView } from "./map.js";
 import { Plots } from "./plots.js";
+import { RecorderPanel } from "./recorder.js";
 import { StatusBanner } from "./status.js";
 import { Tabs } from "./tabs.js";
 import { Teleop } from "./teleop.js";
@@ -147,6 +148,8 @@ log.start();
 map.start();
 new Plots({ world, altitude: $("plot-altitude"), speed: $("plot-speed") }).start();
 status.start();
+const recorder = new RecorderPanel({ toggle: $("record-toggle"), status: $("record-status"), list: $("recording-list") });
+recorder.start();
 
 const copy = (value) => (value == null ? null : structuredClone(value));
 
@@ -190,6 +193,9 @@ window.skydeck = Object.freeze({
   },
   get banner() {
     return { state: $("status-banner").dataset.state, text: status.message };
+  },
+  get recorder() {
+    return { recording: recorder.recording, current: copy(recorder.current), files: copy(recorder.files), error: recorder.error };
   },
   layers: () => layers.snapshot(),
   sockets: () => socketStates(),
