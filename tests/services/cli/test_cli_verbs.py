@@ -219,3 +219,37 @@ def test_the_zsh_script_is_valid_zsh_and_names_the_completer() -> None:
         capture_output=True, text=True, timeout=30,
     )
     assert "_skydeck: function" in loaded.stdout, loaded.stderr
+
+
+async def test_topic_list_verbose_counts_publishers_and_subscribers(core, start_node) -> None:
+    await start_node(Stamped)
+    status, out, _ = await skydeck(core.url, "topic", "list", "--verbose")
+    assert status == 0 and "/stamped 1 publisher(s), 0 subscriber(s)" in out.splitlines()
+
+
+async def test_server_flags_of_core_and_run(tmp_path) -> None:
+    """--host, --port, --advertise-url and --log-level reach the core and a node."""
+    from services.launch.background import BackgroundProcess
+    from tests.conftest import free_port_block
+
+    base = free_port_block(2)
+    core_url, node_url = f"http://127.0.0.1:{base}", f"http://localhost:{base + 1}"
+    env = {**__import__("os").environ, "SKYDECK_CORE_URL": core_url, "PYTHONUNBUFFERED": "1"}
+    core = BackgroundProcess(
+        [sys.executable, "-m", "services.cli", "core", "--host", "127.0.0.1", "--port", str(base),
+         "--advertise-url", core_url, "--log-level", "warning"], name="core", env=env,
+    )  # fmt: skip
+    node = None
+    try:
+        await asyncio.to_thread(core.wait_healthy, core_url + "/health", 30)
+        node = BackgroundProcess(
+            [sys.executable, "-m", "services.cli", "run", "perception", "--host", "127.0.0.1", "--port", str(base + 1),
+             "--advertise-url", node_url, "--log-level", "debug"], name="perception", env=env,
+        )  # fmt: skip
+        await node.await_line("registered with core", 30)  # an INFO line: shown at --log-level debug
+        status, out, _ = await skydeck(core_url, "node", "info", "/perception")
+        assert status == 0 and f"URI: {node_url}" in out  # the advertised URL, not the bound one
+    finally:
+        if node is not None:
+            node.stop()
+        core.stop()
