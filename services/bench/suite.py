@@ -88,6 +88,7 @@ class Suite:
             self._mission(),
             self._flight(),
             self._startup(),
+            self._registry(),
             self._bag(),
         ]
         if self.plots:
@@ -343,6 +344,33 @@ class Suite:
             ]  # fmt: skip
 
         return Family("flight", [trial], 1, summarise, rows=("mission_flown_ratio", "mission_time"))
+
+    def _registry(self) -> Family:
+        from services.bench.registry import measure_registry
+
+        small, large = 20, 200
+        trials = [
+            Trial("small", f"{small} nodes register", lambda: measure_registry(small)),
+            Trial("large", f"{large} nodes register", lambda: measure_registry(large)),
+        ]
+
+        def summarise(readings: Readings) -> list[Result]:
+            seconds = median_of(readings["large"], "seconds")
+            per_node_small_ms = 1000 * median_of(readings["small"], "seconds") / small
+            per_node_large_ms = 1000 * seconds / large
+            return [
+                Result("registry_200_nodes", seconds, "s", target="< 1 s", met=seconds < 1.0,
+                       samples=[v["seconds"] for v in readings["large"]],
+                       detail={"core_cpu_ms_per_node": median_of(readings["large"], "core_cpu_ms_per_node"),
+                               "what": f"{large} sessions register at once, each told its topic's publisher"}),
+                Result("registry_time_per_node", per_node_large_ms, "ms", reference=f"per node with {small} nodes",
+                       reference_value=per_node_small_ms, target="<= 2x (linear in the graph's size)",
+                       met=per_node_large_ms <= 2 * per_node_small_ms,
+                       detail={"what": f"registration time per node at {large} nodes, against {small}"}),
+            ]  # fmt: skip
+
+        return Family("registry", trials, self.settings.startup_repetitions, summarise,
+                      rows=("registry_200_nodes", "registry_time_per_node"))  # fmt: skip
 
     def _startup(self) -> Family:
         from services.bench.startup import measure_startup

@@ -62,3 +62,11 @@ class System:
     def stop(self) -> None:
         for process in reversed(list(self.processes.values())):
             process.stop()
+
+
+def answered(service: str) -> str:
+    """A page predicate: the dashboard's last command is ``service`` and has its answer."""
+    return (
+        "() => { const r = window.skydeck.lastCommand; "
+        f"return r && r.service === '{service}' && r.kind !== 'pending'; }}"
+    )

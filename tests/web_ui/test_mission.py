@@ -13,7 +13,7 @@ import httpx
 import pytest
 
 from tests.conftest import free_port_block
-from tests.web_ui.system import REPO, System
+from tests.web_ui.system import REPO, System, answered
 
 pytestmark = [pytest.mark.browser, pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(180)]
 
@@ -36,13 +36,6 @@ def system(tmp_path_factory: pytest.TempPathFactory) -> Iterator[System]:
         yield running
     finally:
         running.stop()
-
-
-def answered(service: str) -> str:
-    return (
-        "() => { const r = window.skydeck.lastCommand; "
-        f"return r && r.service === '{service}' && r.kind !== 'pending'; }}"
-    )
 
 
 def test_mission_progress_is_drawn(dashboard, my_point, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]

@@ -11,7 +11,7 @@ from collections.abc import Iterator
 import pytest
 
 from tests.conftest import free_port_block
-from tests.web_ui.system import System
+from tests.web_ui.system import System, answered
 
 pytestmark = [pytest.mark.browser, pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(120)]
 
@@ -28,13 +28,6 @@ def token_system(tmp_path_factory: pytest.TempPathFactory) -> Iterator[System]:
         yield running
     finally:
         running.stop()
-
-
-def answered(service: str) -> str:
-    return (
-        "() => { const r = window.skydeck.lastCommand; "
-        f"return r && r.service === '{service}' && r.kind !== 'pending'; }}"
-    )
 
 
 def test_token_is_asked_once_and_then_sent(token_system: System, browser) -> None:  # type: ignore[no-untyped-def]
