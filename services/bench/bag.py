@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import json
 import signal
-import sys
 import tempfile
 import time
 from pathlib import Path
@@ -26,6 +25,7 @@ from typing import Any
 from services.bag.reader import BagReader
 from services.bag.writer import BagWriter
 from services.bench.processes import BenchError, Worker, free_port, wait_http, worker_env
+from services.bench.sim import sim_argv
 from services.bench.sink import percentile
 from services.bench.topics import CoreHolder
 
@@ -82,10 +82,7 @@ def measure_record_world(core: CoreHolder, *, window_s: float, boxes: int = 8, s
     """Every topic of the drone world at speed max, recorded; published vs in the file, per topic."""
     env = worker_env(core.get())
     port = free_port()
-    argv = [
-        sys.executable, "-m", "services.cli", "run", "sim", "--port", str(port), "--log-level", "warning",
-        "--speed", "max", "--seed", str(seed), "--boxes", str(boxes),
-    ]  # fmt: skip
+    argv = sim_argv(port, seed=seed, boxes=boxes)
     with tempfile.TemporaryDirectory() as folder, Worker("bag-sim", argv=argv, env=env) as sim:
         wait_http(f"http://127.0.0.1:{port}/clock", 60.0, what="simulator /clock", worker=sim)
         path = Path(folder) / "world.mcap"

@@ -21,7 +21,7 @@ from services.bench.processes import BenchError, Worker, free_port, wait_http, w
 from services.bench.topics import CoreHolder
 from sim_server.limits import PHYSICS_HZ
 
-__all__ = ["measure_bare", "measure_node"]
+__all__ = ["measure_bare", "measure_node", "sim_argv"]
 
 _SETTLE_S = 0.5  # wall seconds: at tens of times real time the boxes have long landed
 
@@ -36,14 +36,19 @@ def measure_bare(*, boxes: int, steps: int, seed: int = 1) -> dict[str, float]:
     }
 
 
+def sim_argv(port: int, *, seed: int, boxes: int) -> list[str]:
+    """``skydeck run sim`` at speed max on ``port``, quiet."""
+    return [
+        sys.executable, "-m", "services.cli", "run", "sim", "--port", str(port), "--log-level", "warning",
+        "--speed", "max", "--seed", str(seed), "--boxes", str(boxes),
+    ]  # fmt: skip
+
+
 def measure_node(core: CoreHolder, *, boxes: int, window_s: float, subscriber: bool = True, seed: int = 1) -> dict[str, Any]:
     """RTF of the simulator node at speed max, without and (optionally) with a pose subscriber."""
     env = worker_env(core.get())
     port = free_port()
-    argv = [
-        sys.executable, "-m", "services.cli", "run", "sim", "--port", str(port), "--log-level", "warning",
-        "--speed", "max", "--seed", str(seed), "--boxes", str(boxes),
-    ]  # fmt: skip
+    argv = sim_argv(port, seed=seed, boxes=boxes)
     url = f"http://127.0.0.1:{port}"
     with Worker("sim-node", argv=argv, env=env) as sim, httpx.Client(timeout=5.0) as client:
         wait_http(f"{url}/health", 60.0, what="simulator node", worker=sim)

@@ -89,33 +89,33 @@ class TopicEndpoint:
             outbox.push(frame)
         for tap in self.taps:
             tap.push(frame)
-        if not self.subscriptions or self.msg_type is None:
-            self.latest_msg = None
-            return
-        try:
-            msg = self.msg_type.model_validate_json(frame)
-        except ValidationError as error:
-            logger.warning("a frame published on %s is not a %s: %s", self.name, self.type_name, error)
-            return
+        msg = self._parse_for_subscriptions(frame)
         self.latest_msg = msg
-        for subscription in self.subscriptions:
-            subscription.enqueue(msg)
+        if msg is not None:
+            for subscription in self.subscriptions:
+                subscription.enqueue(msg)
 
     def receive_link_frame(self, frame: str) -> None:
         """A frame from a remote publisher, as received: parsed only if someone here needs it."""
         self.latest_frame = frame
         for tap in self.taps:
             tap.push(frame)
+        msg = self._parse_for_subscriptions(frame)
+        if msg is not None:
+            self.latest_msg = msg
+            for subscription in self.subscriptions:
+                subscription.receive(msg)
+
+    def _parse_for_subscriptions(self, frame: str) -> Message | None:
+        """The frame as a message, if a local subscription needs one (None otherwise, or if it
+        is not of the topic's type: then it is dropped for them, with a warning)."""
         if not self.subscriptions or self.msg_type is None:
-            return
+            return None
         try:
-            msg = self.msg_type.model_validate_json(frame)
+            return self.msg_type.model_validate_json(frame)
         except ValidationError as error:
             logger.warning("dropped a message on %s that is not a %s: %s", self.name, self.type_name, error)
-            return
-        self.latest_msg = msg
-        for subscription in self.subscriptions:
-            subscription.receive(msg)
+            return None
 
     # -- the node's own socket (TopicPort) --------------------------------------------------
 
