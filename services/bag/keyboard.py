@@ -36,7 +36,7 @@ def space_bar(on_space: Callable[[], None]) -> Iterator[bool]:
         for _ in range(keys.count(b" ")):
             on_space()
 
-    tty.setcbreak(fd)
+    tty.setcbreak(fd, termios.TCSANOW)  # keeps keys typed before (TCSAFLUSH would drop them)
     loop.add_reader(fd, on_readable)
     try:
         yield True

@@ -179,3 +179,40 @@ async def test_record_and_play_without_a_core_are_one_line(tmp_path: Path) -> No
     assert status == 1 and "cannot reach the core" in err and not (tmp_path / "x.mcap").exists()
     status, _, err = await skydeck(url, "bag", "play", str(make_bag(tmp_path / "run.mcap")))
     assert status == 1 and "cannot reach the core" in err
+
+
+async def test_space_pauses_and_resumes_in_a_terminal(core, tmp_path: Path) -> None:
+    """`bag play` in a real pseudo-terminal: a space typed pauses it, another resumes it."""
+    import pty
+
+    path = make_bag(tmp_path / "run.mcap", count=100, period_ns=20_000_000)  # 2 s
+    leader, follower = pty.openpty()
+    env = {**os.environ, "SKYDECK_CORE_URL": core.url, "PYTHONUNBUFFERED": "1"}
+    process = await asyncio.create_subprocess_exec(
+        sys.executable, "-m", "services.cli", "bag", "play", str(path),
+        stdin=follower, stdout=follower, stderr=follower, env=env,
+    )  # fmt: skip
+    os.close(follower)
+    output = bytearray()
+
+    async def read_until(text: bytes, timeout_s: float = 20.0) -> None:
+        async with asyncio.timeout(timeout_s):
+            while text not in output:
+                chunk = await asyncio.to_thread(os.read, leader, 1024)
+                output.extend(chunk)
+
+    try:
+        await read_until(b"playing")
+        os.write(leader, b" ")
+        await read_until(b"[PAUSED]")
+        os.write(leader, b" ")
+        await read_until(b"[RUNNING]")
+        await read_until(b"played 101 messages")
+        async with asyncio.timeout(20):
+            assert await process.wait() == 0
+    finally:
+        if process.returncode is None:
+            process.kill()
+            await process.wait()
+        os.close(leader)
+    assert b"Traceback" not in output
