@@ -82,7 +82,8 @@ async def start_node(core: CoreProcess) -> AsyncIterator[Callable[[Callable[[Nod
     started: list[Node] = []
 
     async def start(factory: Callable[[NodeSettings], Node], *, registered: bool = True) -> Node:
-        node = factory(NodeSettings(core_url=core.url, port=0, ping_interval_s=1.0, ping_timeout_s=2.0))
+        settings = NodeSettings(core_url=core.url, port=0, ping_interval_s=1.0, ping_timeout_s=2.0, stall_timeout_s=1.0)
+        node = factory(settings)
         await node.start()
         started.append(node)
         if registered:

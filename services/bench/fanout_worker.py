@@ -16,6 +16,7 @@ import asyncio
 from services.bench.payload import TOPIC, latency_us
 from services.bench.sink import emit, wait_for_stop_async
 from services.runtime import Node, NodeSettings
+from services.runtime.executor import run as run_loop
 from shared_models.geometry_msgs import PoseStamped
 
 _REGISTER_TIMEOUT_S = 60.0
@@ -64,7 +65,7 @@ def main() -> None:
     parser.add_argument("--nodes", type=int, default=25)
     parser.add_argument("--prefix", default="a")
     args = parser.parse_args()
-    asyncio.run(run(args.nodes, args.prefix))
+    run_loop(run(args.nodes, args.prefix))
 
 
 if __name__ == "__main__":

@@ -19,6 +19,7 @@ from fastapi import FastAPI
 from services.bench.processes import free_port
 from services.bench.sink import emit, wait_for_stop_async
 from services.runtime import Node, NodeSettings
+from services.runtime.executor import run
 from shared_models.std_srvs import Trigger, TriggerResponse
 
 SERVICE = "/bench/trigger"
@@ -62,7 +63,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("kind", choices=["skydeck", "fastapi"])
     args = parser.parse_args()
-    asyncio.run(skydeck() if args.kind == "skydeck" else bare_fastapi())
+    run(skydeck() if args.kind == "skydeck" else bare_fastapi())
 
 
 if __name__ == "__main__":

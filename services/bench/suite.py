@@ -38,6 +38,8 @@ class Settings:
     mission_worlds: int
     mission_flights: int
     startup_repetitions: int
+    viewers_s: float = 3.0
+    viewers_repetitions: int = 1
     plot_sizes: tuple[int, ...] = (256, 1024, 4096, 16384, 65536)
     plot_boxes: tuple[int, ...] = (0, 4, 8, 16, 30)
     plot_throughput_s: float = 1.5
@@ -58,6 +60,7 @@ FULL = Settings(
     service_repetitions=5, service_calls=2000,
     sim_repetitions=3, sim_window_s=3.0, sim_bare_steps=4800,
     mission_worlds=20, mission_flights=5, startup_repetitions=3,
+    viewers_s=10.0, viewers_repetitions=2,
 )  # fmt: skip
 
 
@@ -89,6 +92,7 @@ class Suite:
             self._flight(),
             self._startup(),
             self._registry(),
+            self._viewers(),
             self._bag(),
         ]
         if self.plots:
@@ -344,6 +348,45 @@ class Suite:
             ]  # fmt: skip
 
         return Family("flight", [trial], 1, summarise, rows=("mission_flown_ratio", "mission_time"))
+
+    def _viewers(self) -> Family:
+        from services.bench.viewers import encoding_costs, run_classroom
+        from services.bench.viewers_worker import JPEG
+
+        s = self.settings
+        trials = [
+            Trial("classroom", "100 pose + 20 raw image viewers", lambda: run_classroom(self.core, duration_s=s.viewers_s, pose=100, image=20)),
+            Trial("stalled", "the same with 5 stalled readers", lambda: run_classroom(self.core, duration_s=s.viewers_s, pose=100, image=20, stalled=5)),
+            Trial("jpeg", "20 JPEG viewers", lambda: run_classroom(self.core, duration_s=s.viewers_s, pose=0, image=20, topic=JPEG)),
+            Trial("encoding", "JSON and msgpack per message", encoding_costs),
+        ]  # fmt: skip
+
+        def summarise(readings: Readings) -> list[Result]:
+            room, stalled, jpeg, codec = (readings[key] for key in ("classroom", "stalled", "jpeg", "encoding"))
+            pose = median_of(room, "pose_delivery")
+            raw_p99 = median_of(room, "image_p99_ms")
+            with_stalled = median_of(stalled, "pose_delivery")
+            return [
+                Result("viewers_pose_delivery", pose, "of 60 Hz", target=">= 0.95 for every one of 100 viewers",
+                       met=pose >= 0.95, detail={"p99_ms": median_of(room, "pose_p99_ms"), "core_cpu": median_of(room, "core_cpu")}),
+                Result("image_raw_gateway_p99", raw_p99, "ms", target="< 50 ms, 640x480 at 30 Hz to 20 viewers",
+                       met=raw_p99 < 50.0, detail={"delivery": median_of(room, "image_delivery"), "p50_ms": median_of(room, "image_p50_ms")}),
+                Result("image_jpeg_gateway_p99", median_of(jpeg, "image_p99_ms"), "ms", target="-",
+                       detail={"delivery": median_of(jpeg, "image_delivery")}),
+                Result("stalled_reader_effect", with_stalled, "of 60 Hz", reference="without stalled readers",
+                       reference_value=pose, target=">= 0.95x (none)", met=with_stalled >= 0.95 * pose,
+                       detail={"what": "the 100 pose viewers' delivery with 5 stalled image readers on the core"}),
+                Result("encoding_image_json", median_of(codec, "image_json_ms"), "ms", reference="msgpack",
+                       reference_value=median_of(codec, "image_msgpack_ms"), target="-",
+                       detail={"what": "make + read one 640x480 rgb8 Image (rosbridge's JSON/CBOR comparison)",
+                               "json_bytes": codec[0]["image_json_bytes"], "msgpack_bytes": codec[0]["image_msgpack_bytes"]}),
+                Result("encoding_pose_json", median_of(codec, "pose_json_ms") * 1000, "us", reference="msgpack",
+                       reference_value=median_of(codec, "pose_msgpack_ms") * 1000, target="-"),
+            ]  # fmt: skip
+
+        return Family("viewers", trials, s.viewers_repetitions, summarise,
+                      rows=("viewers_pose_delivery", "image_raw_gateway_p99", "image_jpeg_gateway_p99",
+                            "stalled_reader_effect", "encoding_image_json", "encoding_pose_json"))  # fmt: skip
 
     def _registry(self) -> Family:
         from services.bench.registry import measure_registry

@@ -21,6 +21,7 @@ from collections.abc import Callable
 from services.bench.payload import BURST, TOPIC, pose_message, stamp_now
 from services.bench.sink import Sink, emit, topic_arguments, wait_for_stop_async
 from services.runtime import Node, NodeSettings
+from services.runtime.executor import run
 from shared_models.geometry_msgs import PoseStamped
 
 _QUEUE = 100
@@ -108,7 +109,7 @@ async def subscriber(args: argparse.Namespace) -> None:
 
 def main() -> None:
     args = topic_arguments(__doc__.splitlines()[0]).parse_args()
-    asyncio.run(publisher(args) if args.role == "pub" else subscriber(args))
+    run(publisher(args) if args.role == "pub" else subscriber(args))
 
 
 if __name__ == "__main__":

@@ -46,6 +46,10 @@ class CoreHolder:
             self._worker, self.url = start_core("bench-core")
         return self.url
 
+    def cpu_seconds(self) -> float:
+        """The core's CPU time so far (0 before it started)."""
+        return self._worker.cpu_seconds() if self._worker is not None else 0.0
+
     def close(self) -> None:
         if self._worker is not None:
             self._worker.stop()

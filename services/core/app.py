@@ -23,7 +23,7 @@ from starlette.routing import Route, WebSocketRoute
 
 from services.core.api import router as api_router
 from services.core.core_node import CORE_NODE, CORE_NODE_PATH, CoreNode
-from services.core.gateway import Gateway
+from services.core.gateway import Gateway, ServiceCallsFirst
 from services.core.openapi import aggregate_openapi
 from services.core.recordings import Recordings, default_recordings_dir
 from services.core.recordings import router as recordings_router
@@ -82,6 +82,8 @@ def create_app(settings: CoreSettings | None = None) -> FastAPI:
     app.state.registry = registry
     app.state.settings = settings
     app.state.core_node = core_node
+    # Innermost first: service calls skip routing, inside the size and origin checks.
+    app.add_middleware(ServiceCallsFirst, registry=registry, gateway=lambda: getattr(app.state, "gateway", None))
     app.add_middleware(BodySizeLimit, max_bytes=settings.max_message_bytes)
     app.add_middleware(SameOriginOnly)
     install_error_handlers(app)
@@ -118,7 +120,7 @@ def create_app(settings: CoreSettings | None = None) -> FastAPI:
     @app.websocket(CORE_NODE_PATH + "/{topic:path}")
     async def core_publication(websocket: WebSocket) -> None:
         """Nodes subscribed to a topic the core publishes (for its clients) link here."""
-        await serve_topic_socket(websocket, core_topic, token=settings.token)
+        await serve_topic_socket(websocket, core_topic, token=settings.token, stall_timeout_s=settings.reader_stall_s)
 
     @app.get("/openapi.json", include_in_schema=False)
     async def openapi(request: Request) -> JSONResponse:

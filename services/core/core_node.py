@@ -159,6 +159,6 @@ class CoreNode:
     def _forget_if_unused(self, endpoint: TopicEndpoint) -> None:
         if endpoint.publishing:
             return
-        endpoint.latest_frame = endpoint.latest_msg = None  # stale once nobody reads it
+        endpoint.forget_latest()  # stale once nobody reads it
         if not endpoint.taps and not endpoint.outboxes:
             del self.participant.endpoints[endpoint.name]

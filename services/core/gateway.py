@@ -8,22 +8,46 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
+
 from fastapi.responses import JSONResponse, Response
 from starlette.requests import Request
+from starlette.types import ASGIApp, Receive, Scope, Send
 from starlette.websockets import WebSocket
 
 from services.core.core_node import CORE_NODE, CoreNode
 from services.core.gateway_topic import GatewayTopic, declared_type
 from services.core.registry import Registry
 from services.core.settings import CoreSettings
-from services.runtime.auth import NOT_AUTHORISED, presented_token, token_matches
+from services.runtime.auth import NOT_AUTHORISED, presented_token, token_equals
 from services.runtime.edge.topic_socket import serve_topic_socket
 from services.runtime.http_client import HttpClient, HttpError, HttpTimeout
 from shared_models import InvalidNameError, resolve_name
+from shared_models.errors import SkydeckError
 
-__all__ = ["Gateway"]
+__all__ = ["Gateway", "GatewayError", "ServiceCallsFirst", "ServiceReply"]
 
-_FORWARDED_HEADERS = ("content-type", "authorization")
+
+class GatewayError(SkydeckError):
+    """The core could not get an answer from a service; ``http_status`` says why."""
+
+    def __init__(self, status: int, message: str) -> None:
+        super().__init__(message)
+        self.status = status
+
+    @property
+    def http_status(self) -> int:  # type: ignore[override]
+        return self.status
+
+
+@dataclass(frozen=True, slots=True)
+class ServiceReply:
+    """A node's answer to a service call, as it sent it."""
+
+    status: int
+    body: bytes
+    content_type: str | None
 
 
 def _error(status_code: int, detail: str) -> JSONResponse:
@@ -52,38 +76,53 @@ class Gateway:
         return await self._latest(name)
 
     async def _call_service(self, name: str, request: Request) -> Response:
+        try:
+            reply = await self.call_service(
+                name, await request.body(), token=presented_token(request), content_type=request.headers.get("content-type")
+            )
+        except SkydeckError as error:
+            return _error(error.http_status, str(error))
+        return Response(reply.body, status_code=reply.status, media_type=reply.content_type)
+
+    async def call_service(
+        self, name: str, body: bytes, *, token: str = "", content_type: str | None = "application/json"
+    ) -> ServiceReply:
+        """The one way the core calls a service: for HTTP clients and protocol adapters alike.
+
+        Returns the node's answer whatever its status (a refusal is an answer); raises
+        :class:`GatewayError` (404 unknown, 405 a topic, 401 no token, 503 unreachable,
+        504 timeout), each with a message that says what to do.
+        """
         found = self._registry.service(name)
         if found is None:
             if self._registry.topic_type(name) is not None:
-                return _error(405, f"{name} is a topic, not a service: GET it or open a WebSocket to it")
-            return _error(404, f"no service {name}: see `skydeck service list` or GET /api/graph")
+                raise GatewayError(405, f"{name} is a topic, not a service: GET it or open a WebSocket to it")
+            raise GatewayError(404, f"no service {name}: see `skydeck service list` or GET /api/graph")
         # Checked here as well as on the node: a call through the core is refused even when the
         # node behind it was started without the token.
-        if not token_matches(self._settings.token, request):
-            return _error(401, NOT_AUTHORISED)
+        if not token_equals(self._settings.token, token):
+            raise GatewayError(401, NOT_AUTHORISED)
         _, record = found
         node = record.description.name
         url = record.description.url.rstrip("/") + name
-        headers = {key: value for key in _FORWARDED_HEADERS if (value := request.headers.get(key))}
-        if token := presented_token(request):
+        headers = {"content-type": content_type} if content_type else {}
+        if token:
             headers["authorization"] = f"Bearer {token}"  # also when it came as ?token= (a browser)
         try:
-            reply = await self._http.post(
-                url, await request.body(), headers=headers, timeout_s=self._settings.gateway_timeout_s
-            )
+            reply = await self._http.post(url, body, headers=headers, timeout_s=self._settings.gateway_timeout_s)
         except ValueError:  # a ?token= with a line break: never put it into a header
-            return _error(400, "the token holds characters a token cannot have")
+            raise GatewayError(400, "the token holds characters a token cannot have") from None
         except HttpTimeout:
-            return _error(
+            raise GatewayError(
                 504,
                 f"{name} on node {node} did not answer within {self._settings.gateway_timeout_s:g} s: "
                 f"is its handler stuck? see `skydeck node info {node}`",
-            )
+            ) from None
         except HttpError:
-            return _error(
+            raise GatewayError(
                 503, f"node {node} hosting {name} is not reachable at {url}: is it running? see `skydeck node list`"
-            )
-        return Response(reply.body, status_code=reply.status, media_type=reply.headers.get("content-type"))
+            ) from None
+        return ServiceReply(reply.status, reply.body, reply.headers.get("content-type"))
 
     async def _latest(self, name: str) -> Response:
         endpoint = self._core.endpoint(name)
@@ -109,9 +148,38 @@ class Gateway:
 
     async def handle_stream(self, websocket: WebSocket) -> None:
         """A topic's stream through the core node (see :mod:`services.core.gateway_topic`)."""
-        await serve_topic_socket(websocket, self._find_topic, token=self._settings.token)
+        await serve_topic_socket(
+            websocket, self._find_topic, token=self._settings.token, stall_timeout_s=self._settings.reader_stall_s
+        )
 
     def _find_topic(self, websocket: WebSocket) -> GatewayTopic:
         name = resolve_name(websocket.scope["path"])  # InvalidNameError closes with 1008
         declared = declared_type(websocket.query_params.get("type"))
         return GatewayTopic(self._core, self._registry, name, declared)
+
+
+class ServiceCallsFirst:
+    """A POST to a registered service's name goes straight to :meth:`Gateway.call_service`,
+    before FastAPI tries every route of the core: the gateway's half of a forwarded call.
+
+    Installed inside the body-size and same-origin checks, so those still apply.
+    """
+
+    def __init__(self, app: ASGIApp, registry: Registry, gateway: Callable[[], Gateway | None]) -> None:
+        self.app = app
+        self._registry = registry
+        self._gateway = gateway
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        gateway = self._gateway()
+        if (
+            scope["type"] != "http"
+            or scope["method"] != "POST"
+            or gateway is None
+            or self._registry.service(scope["path"]) is None
+        ):
+            await self.app(scope, receive, send)
+            return
+        request = Request(scope, receive)
+        response = await gateway._call_service(scope["path"], request)
+        await response(scope, receive, send)

@@ -10,7 +10,9 @@ from __future__ import annotations
 
 from services.core.core_node import CoreNode
 from services.core.registry import Registry
-from services.runtime.edge.frames import FrameRejected, is_complete, parse_frame
+from services.runtime.edge.encoding import decode
+from services.runtime.edge.frames import FrameRejected
+from services.runtime.edge.outbox import Frame
 from services.runtime.edge.topic_socket import TopicConnection
 from services.runtime.endpoint import TopicEndpoint
 from services.runtime.wire import Close
@@ -43,23 +45,23 @@ class GatewayTopic:
         self._type: type[Message] | None = None  # fixed by the first valid frame
         self._endpoint: TopicEndpoint | None = None  # the core's, once this socket publishes
 
-    def open(self, connection: TopicConnection) -> str | None:
+    def open(self, connection: TopicConnection) -> Frame | None:
         if connection.outbox is None:
             return None
         endpoint = self._core.start_reading(self.name, connection.outbox)
-        if endpoint.publishing or self._registry.is_latched(self.name):
-            return endpoint.latest_frame
+        if endpoint.latest is not None and (endpoint.publishing or self._registry.is_latched(self.name)):
+            return endpoint.latest.get(connection.encoding)
         return None
 
-    def receive_frame(self, connection: TopicConnection, text: str) -> None:
+    def receive_frame(self, connection: TopicConnection, frame: Frame) -> None:
         msg_type = self._type or self._topic_type()
-        msg = parse_frame(msg_type, msg_type.__ros_type__, text)  # before publishing: a bad first frame opens nothing
+        msg = decode(frame, msg_type, msg_type.__ros_type__)  # before publishing: a bad first frame opens nothing
         endpoint = self._endpoint
         if endpoint is None:
             endpoint = self._endpoint = self._core.start_publishing(self.name, msg_type)
             self._type = msg_type
             connection.published = True
-        endpoint.dispatch(msg, text if is_complete(msg) else msg.model_dump_json(), connection.outbox)
+        endpoint.dispatch(msg, endpoint.frames_of(msg, frame), connection.outbox)
 
     def close(self, connection: TopicConnection) -> None:
         if connection.outbox is not None:

@@ -52,6 +52,7 @@ class Registry:
         # topic -> names of the nodes publishing / subscribing to it (insertion-ordered)
         self._publishers: dict[str, dict[str, None]] = {}
         self._subscribers: dict[str, dict[str, None]] = {}
+        self._services: dict[str, str] = {}  # service -> the node hosting it
 
     # -- changes ------------------------------------------------------------------------------
 
@@ -103,6 +104,8 @@ class Registry:
             self._publishers.setdefault(entity.name, {})[description.name] = None
         for entity in description.subscriptions:
             self._subscribers.setdefault(entity.name, {})[description.name] = None
+        for entity in description.services:
+            self._services[entity.name] = description.name
 
     def _unindex(self, description: NodeDescription) -> None:
         for index, entities in ((self._publishers, description.publications), (self._subscribers, description.subscriptions)):
@@ -112,6 +115,9 @@ class Registry:
                     names.pop(description.name, None)
                     if not names:
                         del index[entity.name]
+        for entity in description.services:
+            if self._services.get(entity.name) == description.name:
+                del self._services[entity.name]
 
     def _changed(self, before: NodeDescription | None, record: NodeRecord) -> None:
         after = record.description
@@ -175,11 +181,11 @@ class Registry:
 
     def service(self, name: str) -> tuple[Entity, NodeRecord] | None:
         """The service called ``name`` and the node hosting it."""
-        for record in self.nodes.values():
-            for entity in record.description.services:
-                if entity.name == name:
-                    return entity, record
-        return None
+        node = self._services.get(name)
+        if node is None:
+            return None
+        record = self.nodes[node]
+        return next(entity for entity in record.description.services if entity.name == name), record
 
     def graph(self) -> dict[str, Any]:
         """Nodes, topics (type, publishers, subscribers, rate) and services, as ``/api/graph``."""

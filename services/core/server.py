@@ -12,7 +12,7 @@ import uvicorn
 
 from services.core.app import create_app
 from services.core.settings import CoreSettings
-from services.runtime.executor import configure_logging
+from services.runtime.executor import configure_logging, run
 
 __all__ = ["serve"]
 
@@ -55,4 +55,4 @@ def serve(settings: CoreSettings | None = None) -> None:
         ws_ping_timeout=settings.ping_timeout_s,
         ws_per_message_deflate=False,
     )
-    asyncio.run(_Server(config).serve())
+    run(_Server(config).serve())

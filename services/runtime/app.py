@@ -32,9 +32,16 @@ class NodeApp:
     """The FastAPI application of one participant (a node's, or the core's own)."""
 
     def __init__(
-        self, name: str, *, token: str, max_message_bytes: int, health: Callable[[], dict[str, Any]]
+        self,
+        name: str,
+        *,
+        token: str,
+        max_message_bytes: int,
+        stall_timeout_s: float,
+        health: Callable[[], dict[str, Any]],
     ) -> None:
         self._token = token
+        self._stall_timeout_s = stall_timeout_s
         self._logger = logging.getLogger(f"skydeck.node.{name.lstrip('/')}")
         self.fastapi = FastAPI(
             title=f"Skydeck node {name}",
@@ -64,7 +71,9 @@ class NodeApp:
             return Response(endpoint.latest_frame, media_type="application/json")
 
         async def stream(websocket: WebSocket) -> None:
-            await serve_topic_socket(websocket, lambda _: endpoint, token=self._token)
+            await serve_topic_socket(
+                websocket, lambda _: endpoint, token=self._token, stall_timeout_s=self._stall_timeout_s
+            )
 
         self.fastapi.add_api_route(
             endpoint.name,

@@ -21,6 +21,7 @@ __all__ = [
     "WEBSOCKET_CLIENT_LOGGER",
     "RedactTokens",
     "presented_token",
+    "token_equals",
     "token_matches",
 ]
 
@@ -38,9 +39,14 @@ def presented_token(connection: HTTPConnection) -> str:
 
 def token_matches(expected: str, connection: HTTPConnection) -> bool:
     """Whether ``connection`` may act; always true when no token is configured."""
+    return token_equals(expected, presented_token(connection))
+
+
+def token_equals(expected: str, presented: str) -> bool:
+    """Whether ``presented`` is the token (compared in constant time); true when none is set."""
     if not expected:
         return True
-    return hmac.compare_digest(presented_token(connection).encode(), expected.encode())
+    return hmac.compare_digest(presented.encode(), expected.encode())
 
 
 _SECRETS = re.compile(r"(?i)(authorization:\s*(?:bearer\s+)?|[?&]token=)[^\s&]+")

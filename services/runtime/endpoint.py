@@ -1,7 +1,8 @@
 """One topic inside one participant (a node, or the core): the hub its frames pass through.
 
-What the participant publishes is serialised once; the frame goes to every reader's outbox and
-the message object to every local subscription, without copying. Frames from remote
+What the participant publishes is serialised once per encoding its readers asked for (JSON text,
+msgpack); the frame goes to every reader's outbox and the message object to every local
+subscription, without copying. Frames from remote
 publishers (links) are parsed only when a local subscription needs the message, and go on as
 received to the taps (the core's gateway readers, who read everything on the topic).
 
@@ -14,10 +15,9 @@ from __future__ import annotations
 import logging
 from typing import TYPE_CHECKING
 
-from pydantic import ValidationError
-
-from services.runtime.edge.frames import is_complete, parse_frame
-from services.runtime.edge.outbox import Outbox
+from services.runtime.edge.encoding import Frames, decode
+from services.runtime.edge.frames import FrameRejected, is_complete
+from services.runtime.edge.outbox import Frame, Outbox
 from services.runtime.edge.topic_socket import TopicConnection
 from shared_models import Message
 
@@ -42,8 +42,7 @@ class TopicEndpoint:
         self.type_name = msg_type.__ros_type__ if msg_type is not None else type_name
         self.latched = False
         self.publishing = False  # the participant publishes it (a publisher, or a client through it)
-        self.latest_msg: Message | None = None
-        self.latest_frame: str | None = None
+        self.latest: Frames | None = None
         self.published_count = 0
         self.outboxes: set[Outbox] = set()  # readers of what this participant publishes
         self.taps: set[Outbox] = set()  # readers of everything on the topic (the core's clients)
@@ -54,89 +53,107 @@ class TopicEndpoint:
         """Whether the participant wants this topic from its remote publishers."""
         return bool(self.subscriptions or self.taps)
 
+    @property
+    def latest_frame(self) -> str | None:
+        """The latest message as JSON (``GET /TOPIC``), made when first asked for."""
+        return self.latest.json if self.latest is not None else None
+
+    def forget_latest(self) -> None:
+        self.latest = None
+
     # -- messages ---------------------------------------------------------------------------
 
-    def dispatch(self, msg: Message, frame: str, sender: Outbox | None = None) -> None:
-        """Deliver a message this participant publishes: readers, taps, local subscriptions."""
-        self.latest_msg = msg
-        self.latest_frame = frame
+    def dispatch(self, msg: Message, frames: Frames | None = None, sender: Outbox | None = None) -> None:
+        """Deliver a message this participant publishes: readers, taps, local subscriptions.
+
+        Each encoding some reader wants is made once, for all of them (``frames``).
+        """
+        frames = Frames(msg) if frames is None else frames
+        self.latest = frames
         self.published_count += 1
         for outbox in self.outboxes:
             if outbox is not sender:
-                outbox.push(frame)
+                outbox.push(frames.get(outbox.encoding))
         for tap in self.taps:
             if tap is not sender:
-                tap.push(frame)
+                tap.push(frames.get(tap.encoding))
         for subscription in self.subscriptions:
             subscription.enqueue(msg)
 
-    def receive(self, msg: Message, frame: str, sender: Outbox | None = None) -> None:
+    def receive(self, msg: Message, frames: Frames, sender: Outbox | None = None) -> None:
         """Deliver a message from elsewhere (a client of this node) to taps and subscriptions."""
-        self.latest_msg = msg
-        self.latest_frame = frame
+        self.latest = frames
         for tap in self.taps:
             if tap is not sender:
-                tap.push(frame)
+                tap.push(frames.get(tap.encoding))
         for subscription in self.subscriptions:
             subscription.receive(msg)
 
     def dispatch_frame(self, frame: str) -> None:
-        """Deliver a frame this participant publishes as it is (already serialised, trusted: a
-        recording played back); parsed only if a local subscription needs the message."""
-        self.latest_frame = frame
+        """Deliver a JSON frame this participant publishes as it is (already serialised, trusted:
+        a recording played back); other encodings are made from it if readers want them."""
+        frames = Frames.received(frame, self.msg_type)
+        self.latest = frames
         self.published_count += 1
         for outbox in self.outboxes:
-            outbox.push(frame)
+            outbox.push(frames.get(outbox.encoding))
         for tap in self.taps:
-            tap.push(frame)
-        msg = self._parse_for_subscriptions(frame)
-        self.latest_msg = msg
-        if msg is not None:
-            for subscription in self.subscriptions:
-                subscription.enqueue(msg)
+            tap.push(frames.get(tap.encoding))
+        for subscription, msg in self._parsed_for(frames):
+            subscription.enqueue(msg)
 
-    def receive_link_frame(self, frame: str) -> None:
+    def receive_link_frame(self, frame: Frame) -> None:
         """A frame from a remote publisher, as received: parsed only if someone here needs it."""
-        self.latest_frame = frame
+        frames = Frames.received(frame, self.msg_type)
+        self.latest = frames
         for tap in self.taps:
-            tap.push(frame)
-        msg = self._parse_for_subscriptions(frame)
-        if msg is not None:
-            self.latest_msg = msg
-            for subscription in self.subscriptions:
-                subscription.receive(msg)
+            tap.push(frames.get(tap.encoding))
+        for subscription, msg in self._parsed_for(frames):
+            subscription.receive(msg)
 
-    def _parse_for_subscriptions(self, frame: str) -> Message | None:
-        """The frame as a message, if a local subscription needs one (None otherwise, or if it
-        is not of the topic's type: then it is dropped for them, with a warning)."""
+    def _parsed_for(self, frames: Frames) -> list[tuple[Subscription, Message]]:
+        """Each local subscription with the message, parsed once; none if nobody here needs it
+        or it is not of the topic's type (then it is dropped, with a warning)."""
         if not self.subscriptions or self.msg_type is None:
-            return None
+            return []
         try:
-            return self.msg_type.model_validate_json(frame)
-        except ValidationError as error:
-            logger.warning("dropped a message on %s that is not a %s: %s", self.name, self.type_name, error)
-            return None
+            msg = frames.message()
+        except FrameRejected as error:
+            logger.warning("dropped a message on %s: %s", self.name, error.reason)
+            return []
+        return [(subscription, msg) for subscription in self.subscriptions]
+
+    def frames_of(self, msg: Message, frame: Frame) -> Frames:
+        """The frames of ``msg``, parsed from ``frame``: the frame itself if it named every field,
+        so it goes on as it came; otherwise made again, defaults filled in, for every reader."""
+        if not is_complete(msg):
+            return Frames(msg)
+        if isinstance(frame, str):
+            return Frames(msg, json_text=frame)
+        return Frames(msg, packed=frame)
 
     # -- the node's own socket (TopicPort) --------------------------------------------------
 
-    def open(self, connection: TopicConnection) -> str | None:
+    def open(self, connection: TopicConnection) -> Frame | None:
         """A socket reads what this participant publishes; a latched topic's latest goes first."""
         if connection.outbox is not None:
             self.outboxes.add(connection.outbox)
-        return self.latest_frame if self.latched and self.publishing else None
+        if self.latched and self.publishing and self.latest is not None:
+            return self.latest.get(connection.encoding)
+        return None
 
-    def receive_frame(self, connection: TopicConnection, text: str) -> None:
-        """A client published ``text`` here: the node publishes it, or, if the node only
+    def receive_frame(self, connection: TopicConnection, frame: Frame) -> None:
+        """A client published ``frame`` here: the node publishes it, or, if the node only
         subscribes to the topic, its subscriptions receive it."""
         if self.msg_type is None:  # never on a node's own endpoint; the core routes elsewhere
             raise TypeError(f"{self.name} has no message type here")
-        msg = parse_frame(self.msg_type, self.type_name, text)
-        frame = text if is_complete(msg) else msg.model_dump_json()
+        msg = decode(frame, self.msg_type, self.type_name)
+        frames = self.frames_of(msg, frame)
         connection.published = True
         if self.publishing:
-            self.dispatch(msg, frame, connection.outbox)
+            self.dispatch(msg, frames, connection.outbox)
         else:
-            self.receive(msg, frame, connection.outbox)
+            self.receive(msg, frames, connection.outbox)
 
     def close(self, connection: TopicConnection) -> None:
         if connection.outbox is not None:

@@ -61,6 +61,7 @@ class Node:
             self._name,
             token=self.settings.token,
             max_message_bytes=self.settings.max_message_bytes,
+            stall_timeout_s=self.settings.reader_stall_s,
             health=lambda: {"status": "ok", "node": self._name, "pid": self.pid},
         )
         self._participant = Participant(

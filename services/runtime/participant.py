@@ -13,6 +13,7 @@ import os
 from collections.abc import Callable, Coroutine
 from typing import Any
 
+from services.runtime.edge.encoding import Encoding
 from services.runtime.edge.links import PublisherLink
 from services.runtime.endpoint import TopicEndpoint
 from services.runtime.errors import NodeError
@@ -135,12 +136,19 @@ class Participant:
         depths = [s.queue_size for s in endpoint.subscriptions]
         depths += [tap.queue_size for tap in endpoint.taps if isinstance(tap, RawSubscription)]
         queue_size = min(max(depths, default=100), MAX_QUEUE)  # a publisher keeps at most MAX_QUEUE per reader
+        # Nodes link in msgpack; a topic read here only raw (a recorder) links in JSON, so its
+        # frames come as the publisher serialised them, never converted here.
+        raw_only = bool(endpoint.taps) and not endpoint.subscriptions and all(
+            isinstance(tap, RawSubscription) for tap in endpoint.taps
+        )
+        encoding = Encoding.JSON if raw_only else Encoding.MSGPACK
         for url in wanted:
             if (topic, url) not in self.links:
                 link = PublisherLink(
                     url,
                     topic,
                     endpoint.receive_link_frame,
+                    encoding=encoding,
                     queue_size=queue_size,
                     max_message_bytes=self.settings.max_message_bytes,
                     ping_interval_s=self.settings.ping_interval_s,

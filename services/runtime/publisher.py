@@ -43,7 +43,7 @@ class Publisher(Generic[M]):
             # Straight into the field: messages check assigned values, but this one is an int we
             # made, and the check would cost a fifth of a publish.
             msg.header.__dict__["seq"] = self._seq  # type: ignore[attr-defined]
-        self._endpoint.dispatch(msg, msg.model_dump_json())
+        self._endpoint.dispatch(msg)  # serialised once per encoding that a reader wants
 
     def get_subscription_count(self) -> int:
         """How many remote readers and local subscriptions receive this topic now."""

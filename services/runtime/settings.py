@@ -18,7 +18,7 @@ from typing import Any, TypeVar
 from pydantic import Field, ValidationError
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
-from services.runtime.wire import MAX_MESSAGE_BYTES
+from services.runtime.wire import MAX_MESSAGE_BYTES, STALL_CHECK_PERIOD_S
 
 __all__ = [
     "DEFAULT_CORE_URL",
@@ -57,6 +57,16 @@ class ProcessSettings(BaseSettings):
     # Keep-alive pings reap sockets whose peer vanished without closing.
     ping_interval_s: float = Field(default=5.0, gt=0)
     ping_timeout_s: float = Field(default=10.0, gt=0)
+    # A reader whose socket takes nothing for this long while frames wait is closed with 4001
+    # (see reader_stall_s).
+    stall_timeout_s: float = Field(default=5.0, gt=0)
+
+    @property
+    def reader_stall_s(self) -> float:
+        """``stall_timeout_s``, kept shorter than ``ping_timeout_s``: a flooded reader's pong
+        waits behind the frames it has not read, and the keepalive would otherwise drop it
+        first, with no close frame to say why."""
+        return min(self.stall_timeout_s, max(self.ping_timeout_s - 2 * STALL_CHECK_PERIOD_S, STALL_CHECK_PERIOD_S))
 
     log_level: str = "INFO"
 

@@ -129,9 +129,10 @@ class RawSubscription(Outbox):
     (rclpy's ``raw=True``): what a recorder needs, serialised once by the publisher.
 
     It is a tap on the topic's endpoint, so it sees every frame the participant gets: from each
-    remote publisher, from clients of this node, and its own publications. The callback runs
-    where the frame arrives, so it must be a quick plain function; ``queue_size`` is the depth
-    each publisher keeps for this participant while it reads.
+    remote publisher, from clients of this node, and its own publications, always as JSON text
+    (a topic read only raw links in JSON, so nothing is converted). The callback runs where the
+    frame arrives, so it must be a quick plain function; ``queue_size`` is the depth each
+    publisher keeps for this participant while it reads.
     """
 
     def __init__(self, topic_name: str, msg_type: type[Message], callback: Callable[[str], Any], queue_size: int) -> None:
@@ -144,7 +145,9 @@ class RawSubscription(Outbox):
         self.queue_size = queue_size
         self._logger = logging.getLogger("skydeck.runtime")
 
-    def push(self, frame: str) -> None:
+    def push(self, frame: str | bytes) -> None:
+        if not isinstance(frame, str):  # its encoding is JSON: every endpoint hands it text
+            raise TypeError(f"raw subscription of {self.topic_name} got a binary frame")
         try:
             self.callback(frame)
         except Exception:

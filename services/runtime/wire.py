@@ -14,6 +14,7 @@ __all__ = [
     "MAX_MESSAGE_BYTES",
     "MAX_QUEUE",
     "MAX_RATE_HZ",
+    "STALL_CHECK_PERIOD_S",
     "TOKEN_QUERY_PARAMETER",
     "Close",
     "wire_description",
@@ -30,6 +31,7 @@ class Close(enum.IntEnum):
     TOO_BIG = 1009  # a frame over MAX_MESSAGE_BYTES
     INTERNAL = 1011  # the server failed
     REPLACED = 4000  # a node session: a newer node took this name
+    STALLED = 4001  # a reader took nothing for SKYDECK_STALL_TIMEOUT_S while frames waited
 
 
 # -- limits -------------------------------------------------------------------------------------
@@ -42,6 +44,9 @@ DEFAULT_QUEUE = 100
 """Frames a reader may fall behind before its oldest are dropped (ROS's queue_size)."""
 MAX_QUEUE = 10_000
 MAX_RATE_HZ = 1_000.0
+
+STALL_CHECK_PERIOD_S = 0.5
+"""How often a reader is checked for a stall (``stall_timeout_s`` of the settings)."""
 
 TOKEN_QUERY_PARAMETER = "token"
 """Browsers cannot set headers on a WebSocket: they send the token as ``?token=``."""
@@ -58,4 +63,5 @@ def wire_description() -> dict[str, Any]:
             "max_rate_hz": MAX_RATE_HZ,
         },
         "token_query_parameter": TOKEN_QUERY_PARAMETER,
+        "encodings": ["json", "msgpack"],
     }

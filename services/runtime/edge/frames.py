@@ -1,21 +1,18 @@
-"""Frames that enter a topic: validated once against its type, refused with a close code and a
-reason that names the field; and closing a socket with a reason that fits a close frame."""
+"""Frames refused with a close code and a reason that names the field; whether a frame named
+every field; and closing a socket with a reason that fits a close frame. (Validating a frame of
+either encoding against its type: :func:`services.runtime.edge.encoding.decode`.)"""
 
 from __future__ import annotations
 
 import contextlib
-from typing import TypeVar
 
-from pydantic import BaseModel, ValidationError
+from pydantic import ValidationError
 from starlette.websockets import WebSocket, WebSocketState
 
-from services.runtime.wire import Close
 from shared_models import Message
 from shared_models.errors import SkydeckError
 
-__all__ = ["FrameRejected", "close_with", "describe_validation_error", "is_complete", "parse_frame"]
-
-M = TypeVar("M", bound=BaseModel)
+__all__ = ["FrameRejected", "close_with", "describe_validation_error", "is_complete"]
 
 _MAX_REASON_BYTES = 123  # RFC 6455: a close frame's reason fits in 123 bytes
 
@@ -41,14 +38,6 @@ def describe_validation_error(type_name: str, error: ValidationError) -> str:
     location = ".".join(str(part) for part in first["loc"]) or "(message)"
     more = f" (+{error.error_count() - 1} more)" if error.error_count() > 1 else ""
     return f"invalid {type_name}: {location}: {first['msg']}{more}"
-
-
-def parse_frame(msg_type: type[M], type_name: str, text: str | bytes) -> M:
-    """Validate one frame against the topic's type, or raise FrameRejected(1007)."""
-    try:
-        return msg_type.model_validate_json(text)
-    except ValidationError as error:
-        raise FrameRejected(Close.INVALID_FRAME, describe_validation_error(type_name, error)) from None
 
 
 def is_complete(msg: Message) -> bool:

@@ -1,7 +1,8 @@
 """A subscriber's connection to one remote publisher, kept up until it is no longer wanted.
 
 The link reconnects by itself (short backoff) when the publisher goes away and comes back,
-which is how node-to-node streams survive a publisher restart or a missing core.
+which is how node-to-node streams survive a publisher restart or a missing core. Nodes link
+in msgpack (:mod:`.encoding`): cheaper to make and to read than JSON, byte arrays as bytes.
 """
 
 from __future__ import annotations
@@ -12,8 +13,10 @@ from collections.abc import Callable
 
 from websockets.asyncio.client import connect
 from websockets.exceptions import InvalidHandshake, InvalidURI, WebSocketException
+from websockets.typing import Subprotocol
 
 from services.runtime.auth import WEBSOCKET_CLIENT_LOGGER
+from services.runtime.edge.encoding import Encoding
 
 __all__ = ["PublisherLink", "stream_url"]
 
@@ -32,22 +35,24 @@ def stream_url(base_url: str, topic: str, **query: object) -> str:
 
 
 class PublisherLink:
-    """Reads one publisher's stream of ``topic`` and hands every text frame to ``on_frame``."""
+    """Reads one publisher's stream of ``topic`` and hands every frame to ``on_frame``."""
 
     def __init__(
         self,
         publisher_url: str,
         topic: str,
-        on_frame: Callable[[str], None],
+        on_frame: Callable[[str | bytes], None],
         *,
         queue_size: int,
         max_message_bytes: int,
         ping_interval_s: float,
         ping_timeout_s: float,
         token: str = "",
+        encoding: Encoding = Encoding.MSGPACK,
     ) -> None:
         self.topic = topic
         self.url = stream_url(publisher_url, topic, queue=queue_size)
+        self._subprotocols = [Subprotocol(encoding.subprotocol)]
         self._on_frame = on_frame
         self._max_message_bytes = max_message_bytes
         self._ping_interval_s = ping_interval_s
@@ -62,6 +67,7 @@ class PublisherLink:
             try:
                 async with connect(
                     self.url,
+                    subprotocols=self._subprotocols,
                     additional_headers=self._headers,
                     compression=None,
                     logger=WEBSOCKET_CLIENT_LOGGER,
@@ -75,8 +81,7 @@ class PublisherLink:
                     backoff_s = _BACKOFF_FIRST_S
                     on_frame = self._on_frame
                     async for frame in websocket:
-                        if isinstance(frame, str):
-                            on_frame(frame)
+                        on_frame(frame)
             except (OSError, TimeoutError, InvalidHandshake, WebSocketException) as error:
                 if isinstance(error, InvalidURI):
                     logger.error("cannot subscribe to %s at %s: %s", self.topic, self.url, error)

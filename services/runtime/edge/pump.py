@@ -3,24 +3,29 @@ from it, until either side ends the connection. The one loop behind every topic 
 
 A reader's outbox is written by its own task (or, while that task is idle, by ``publish()``
 itself: see :class:`_EagerSend`), so a slow reader loses its own oldest frames and never slows
-the publisher or other readers.
+the publisher or other readers. A reader whose socket has taken nothing for ``stall_timeout_s``
+while frames wait has stopped reading: it is closed with 4001 (``Close.STALLED``), which it
+sees after the frames it already has, with a proper closing handshake (not a reset).
 """
 
 from __future__ import annotations
 
 import asyncio
 import contextlib
+import time
 from collections.abc import Callable, Coroutine
 from typing import Any
 
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
-from services.runtime.edge.frames import FrameRejected, close_with
+from services.runtime.edge.encoding import Encoding
+from services.runtime.edge.frames import FrameRejected
 from services.runtime.edge.options import StreamOptions
-from services.runtime.edge.outbox import Outbox
-from services.runtime.wire import Close
+from services.runtime.edge.outbox import Frame, Outbox
+from services.runtime.wire import STALL_CHECK_PERIOD_S, Close
 
 __all__ = ["serve_stream"]
+
 
 
 async def serve_stream(
@@ -28,28 +33,31 @@ async def serve_stream(
     outbox: Outbox | None,
     *,
     options: StreamOptions,
-    initial_frame: str | None,
-    on_frame: Callable[[str], None] | None,
-) -> None:
+    encoding: Encoding,
+    initial_frame: Frame | None,
+    on_frame: Callable[[Frame], None] | None,
+    stall_timeout_s: float,
+) -> FrameRejected | None:
     """Write ``outbox`` to the accepted ``websocket`` and hand client frames to ``on_frame``.
 
     ``outbox`` is None for a publish-only socket (nothing is written to it). ``on_frame``
-    validates and publishes a frame, raising FrameRejected to close this socket; ``None`` means
-    the stream is read-only. Returns when either side ends the connection.
+    validates and publishes a frame, raising FrameRejected to end the stream; ``None`` means
+    the stream is read-only. Returns when either side ends the connection, with the reason to
+    close it if this side ended it (the caller detaches the socket first, then closes it).
     """
-    reader = asyncio.create_task(_read_frames(websocket, on_frame))
-    writer = None
+    reader = asyncio.create_task(_read_frames(websocket, on_frame, encoding))
+    tasks = {reader}
+    if outbox is not None:
+        tasks.add(asyncio.create_task(_write_frames(websocket, outbox, options, initial_frame)))
+        tasks.add(asyncio.create_task(_watch_stall(outbox, stall_timeout_s)))
     try:
-        if outbox is not None:
-            writer = asyncio.create_task(_write_frames(websocket, outbox, options, initial_frame))
-        done, _ = await asyncio.wait({reader} if writer is None else {reader, writer}, return_when=asyncio.FIRST_COMPLETED)
-        if writer is not None:
-            writer.cancel()
-        if reader in done and (rejected := reader.exception()) is not None:
-            if isinstance(rejected, FrameRejected):
-                await close_with(websocket, rejected.code, rejected.reason)
-            else:
-                raise rejected
+        done, _ = await asyncio.wait(tasks, return_when=asyncio.FIRST_COMPLETED)
+        for task in tasks - {reader}:
+            task.cancel()
+        rejected = done.pop().exception()
+        if rejected is None or isinstance(rejected, FrameRejected):
+            return rejected
+        raise rejected
     finally:
         reader.cancel()
 
@@ -57,15 +65,19 @@ async def serve_stream(
 _Send = Callable[[Any], Coroutine[Any, Any, None]]
 
 
-async def _write_frames(
-    websocket: WebSocket, outbox: Outbox, options: StreamOptions, initial_frame: str | None
-) -> None:
+def _message(frame: Frame) -> dict[str, Any]:
+    if isinstance(frame, str):
+        return {"type": "websocket.send", "text": frame}
+    return {"type": "websocket.send", "bytes": frame}
+
+
+async def _write_frames(websocket: WebSocket, outbox: Outbox, options: StreamOptions, initial_frame: Frame | None) -> None:
     send = websocket.send
-    eager = _EagerSend(send)
+    eager = _EagerSend(send, outbox)
     try:
         with contextlib.suppress(WebSocketDisconnect, RuntimeError, OSError):
             if initial_frame is not None:
-                await send({"type": "websocket.send", "text": initial_frame})
+                await _timed(send, outbox, initial_frame)
             if options.rate_hz is None:
                 while True:
                     outbox.send_now = eager  # only while idle: a frame must not overtake queued ones
@@ -73,19 +85,35 @@ async def _write_frames(
                     outbox.send_now = None
                     await eager.settled()
                     for frame in frames:
-                        await send({"type": "websocket.send", "text": frame})
+                        await _timed(send, outbox, frame)
             else:
-                await _write_throttled(send, outbox, options.rate_hz)
+                period_s = 1.0 / options.rate_hz
+                while True:
+                    await _timed(send, outbox, await outbox.latest())
+                    await asyncio.sleep(period_s)
     finally:
         outbox.send_now = None
         eager.cancel()
 
 
-async def _write_throttled(send: _Send, outbox: Outbox, rate_hz: float) -> None:
-    period_s = 1.0 / rate_hz
+async def _timed(send: _Send, outbox: Outbox, frame: Frame) -> None:
+    """One send, with ``outbox.busy_since`` set while it waits for the socket."""
+    outbox.busy_since = time.monotonic()
+    await send(_message(frame))
+    outbox.busy_since = None
+
+
+async def _watch_stall(outbox: Outbox, stall_timeout_s: float) -> None:
+    """End the stream with 4001 once a send has waited for the socket for ``stall_timeout_s``."""
     while True:
-        await send({"type": "websocket.send", "text": await outbox.latest()})
-        await asyncio.sleep(period_s)
+        await asyncio.sleep(STALL_CHECK_PERIOD_S)
+        busy_since = outbox.busy_since
+        if busy_since is not None and time.monotonic() - busy_since > stall_timeout_s:
+            raise FrameRejected(
+                Close.STALLED,
+                f"reader stalled: read nothing for {stall_timeout_s:g} s ({outbox.dropped} frames dropped); "
+                "reconnect, or ask for less (?rate=HZ)",
+            )
 
 
 class _EagerSend:
@@ -98,21 +126,23 @@ class _EagerSend:
     paused writing), a task finishes it, and the writer waits for that task before sending more.
     """
 
-    def __init__(self, send: _Send) -> None:
+    def __init__(self, send: _Send, outbox: Outbox) -> None:
         self._send = send
+        self._outbox = outbox
         self._pending: asyncio.Task[None] | None = None
 
-    def __call__(self, frame: str) -> bool:
+    def __call__(self, frame: Frame) -> bool:
         if self._pending is not None:
             return False  # an earlier frame still waits for the socket: queue behind it
-        step = self._send({"type": "websocket.send", "text": frame})
+        step = self._send(_message(frame))
         try:
             waiting_on = step.send(None)
         except StopIteration:
             return True
         except Exception:
             return False  # the socket is gone: the writer meets the same error and ends the stream
-        self._pending = asyncio.ensure_future(_finish(step, waiting_on))
+        self._outbox.busy_since = time.monotonic()
+        self._pending = asyncio.ensure_future(_finish(step, waiting_on, self._outbox))
         return True
 
     async def settled(self) -> None:
@@ -126,7 +156,7 @@ class _EagerSend:
             self._pending.cancel()
 
 
-async def _finish(step: Coroutine[Any, Any, None], waiting_on: Any) -> None:
+async def _finish(step: Coroutine[Any, Any, None], waiting_on: Any, outbox: Outbox) -> None:
     """Run a coroutine that suspended on its first step to the end (what a task would do)."""
     try:
         while True:
@@ -140,17 +170,21 @@ async def _finish(step: Coroutine[Any, Any, None], waiting_on: Any) -> None:
                 raise
             waiting_on = step.send(None)
     except StopIteration:
+        outbox.busy_since = None
         return
 
 
-async def _read_frames(websocket: WebSocket, on_frame: Callable[[str], None] | None) -> None:
+async def _read_frames(websocket: WebSocket, on_frame: Callable[[Frame], None] | None, encoding: Encoding) -> None:
+    binary = encoding is not Encoding.JSON
     while True:
         message = await websocket.receive()
         if message["type"] == "websocket.disconnect":
             return
-        text = message.get("text")
-        if text is None:
-            raise FrameRejected(Close.UNSUPPORTED, "binary frames are not supported: send JSON text")
+        frame = message.get("bytes") if binary else message.get("text")
+        if frame is None:
+            if binary:
+                raise FrameRejected(Close.UNSUPPORTED, f"this socket speaks {encoding.value}: send binary frames")
+            raise FrameRejected(Close.UNSUPPORTED, "binary frames need ?encoding=msgpack: send JSON text")
         if on_frame is None:
             raise FrameRejected(Close.UNSUPPORTED, "this stream is read-only")
-        on_frame(text)
+        on_frame(frame)

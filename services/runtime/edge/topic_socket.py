@@ -2,12 +2,15 @@
 
     await serve_topic_socket(websocket, find_port, token=settings.token)
 
-It accepts the socket, finds the topic (``find_port``: a node's own endpoint, or the core's
-gateway view of the topic), reads the options (``queue``, ``rate``, ``mode``), checks the token
-before a client may publish, and pumps frames both ways. What a frame *means* is the port's:
+It negotiates the encoding (JSON text, or msgpack: :mod:`.encoding`), accepts the socket, finds
+the topic (``find_port``: a node's own endpoint, or the core's gateway view of the topic), reads
+the options (``queue``, ``rate``, ``mode``), checks the token before a client may publish, and
+pumps frames both ways. What a frame *means* is the port's:
 
-- ``open(connection)``: a socket arrives; returns the latched frame to send it first, if any;
-- ``receive_frame(connection, text)``: a client published a frame: validate it and publish it,
+- ``open(connection)``: a socket arrives; returns the latched frame to send it first, if any,
+  in the connection's encoding;
+- ``receive_frame(connection, frame)``: a client published a frame (text, or bytes on a msgpack
+  socket): validate it and publish it,
   never back to the connection it came from (no echo); raise FrameRejected to refuse it;
 - ``close(connection)``: the socket is gone.
 
@@ -25,9 +28,10 @@ from typing import Protocol
 from starlette.websockets import WebSocket
 
 from services.runtime.auth import NOT_AUTHORISED, token_matches
+from services.runtime.edge.encoding import Encoding, negotiate
 from services.runtime.edge.frames import FrameRejected, close_with
 from services.runtime.edge.options import Mode, StreamOptions
-from services.runtime.edge.outbox import Outbox
+from services.runtime.edge.outbox import Frame, Outbox
 from services.runtime.edge.pump import serve_stream
 from services.runtime.wire import Close
 from shared_models.errors import SkydeckError
@@ -42,6 +46,7 @@ class TopicConnection:
     options: StreamOptions
     outbox: Outbox | None  # None: a publish-only client, sent nothing
     may_publish: bool
+    encoding: Encoding = Encoding.JSON
     published: bool = False  # set by the port once a frame of this client was published
 
 
@@ -50,22 +55,28 @@ class TopicPort(Protocol):
 
     name: str
 
-    def open(self, connection: TopicConnection) -> str | None: ...
+    def open(self, connection: TopicConnection) -> Frame | None: ...
 
-    def receive_frame(self, connection: TopicConnection, text: str) -> None: ...
+    def receive_frame(self, connection: TopicConnection, frame: Frame) -> None: ...
 
     def close(self, connection: TopicConnection) -> None: ...
 
 
 async def serve_topic_socket(
-    websocket: WebSocket, find_port: Callable[[WebSocket], TopicPort], *, token: str
+    websocket: WebSocket, find_port: Callable[[WebSocket], TopicPort], *, token: str, stall_timeout_s: float
 ) -> None:
     """Serve one topic socket from handshake to close (see the module docstring).
 
     ``find_port`` may raise any SkydeckError (an invalid name, an unknown ``?type=``): the
     socket is closed with that error's close code and message.
     """
-    await websocket.accept()
+    try:
+        encoding, subprotocol = negotiate(websocket.query_params, websocket.scope.get("subprotocols", ()))
+    except FrameRejected as refused:
+        await websocket.accept()
+        await close_with(websocket, refused.code, refused.reason)
+        return
+    await websocket.accept(subprotocol=subprotocol)
     try:
         options = StreamOptions.from_query(websocket.query_params)
         port = find_port(websocket)
@@ -74,23 +85,30 @@ async def serve_topic_socket(
         return
     connection = TopicConnection(
         options=options,
-        outbox=Outbox(options.outbox_size) if options.reads else None,
+        outbox=Outbox(options.outbox_size, encoding) if options.reads else None,
         may_publish=token_matches(token, websocket),
+        encoding=encoding,
     )
 
-    def on_frame(text: str) -> None:
+    def on_frame(frame: Frame) -> None:
         if not connection.may_publish:
             raise FrameRejected(Close.POLICY, NOT_AUTHORISED)
-        port.receive_frame(connection, text)
+        port.receive_frame(connection, frame)
 
     initial_frame = port.open(connection)
     try:
-        await serve_stream(
+        rejected = await serve_stream(
             websocket,
             connection.outbox,
             options=options,
+            encoding=encoding,
             initial_frame=initial_frame,
             on_frame=None if options.mode is Mode.SUBSCRIBE else on_frame,
+            stall_timeout_s=stall_timeout_s,
         )
     finally:
         port.close(connection)
+    if rejected is not None:
+        # A stalled reader's close frame goes out behind the frames it has not read yet, when it
+        # reads again; one that never does is ended by the server's keepalive (ping_timeout_s).
+        await close_with(websocket, rejected.code, rejected.reason)

@@ -149,3 +149,18 @@ async def test_topic_pub_once_reaches_a_subscriber_that_comes_a_moment_later(cor
     assert status == 0, err
     talker = await start_node(Talker)
     await wait_until(lambda: any(t.linear.x == 0.25 for t in talker.twists), timeout_s=5, what="the latched Twist")
+
+
+async def test_echo_into_a_reader_that_stops_ends_quietly(core, start_node) -> None:
+    """`skydeck topic echo /x | head -2`: when the reader of our output goes, we stop, exit 0."""
+    await start_node(Talker)
+    read, write = os.pipe()
+    process = await asyncio.create_subprocess_exec(
+        sys.executable, "-m", "services.cli", "topic", "echo", "/my_point",
+        env={**os.environ, "SKYDECK_CORE_URL": core.url}, stdout=write, stderr=asyncio.subprocess.PIPE,
+    )  # fmt: skip
+    os.close(write)
+    with os.fdopen(read, "rb") as output:
+        assert b"frame_id" in await asyncio.to_thread(output.read, 200)  # like `head`, then it goes
+    _, stderr = await asyncio.wait_for(process.communicate(), 20)
+    assert process.returncode == 0 and b"Traceback" not in stderr, stderr.decode()

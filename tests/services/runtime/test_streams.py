@@ -99,8 +99,13 @@ async def test_bad_options_close_with_1008(start_node, query) -> None:
     assert code == 1008 and query.split("=")[0] in reason
 
 
+def _patient(settings):  # type: ignore[no-untyped-def]
+    """Settings under which a reader that reads late is slow, not stalled, and keepalive waits."""
+    return settings.model_copy(update={"ping_interval_s": 5.0, "ping_timeout_s": 60.0, "stall_timeout_s": 50.0})
+
+
 async def test_slow_reader_loses_oldest_and_does_not_slow_others(start_node) -> None:
-    sink = await start_node(Teleop)
+    sink = await start_node(lambda settings: Teleop(_patient(settings)))
     outboxes = sink._participant.endpoints["/echo"].outboxes
     async with connect(stream_url(sink.url, "/echo", queue=5), max_queue=1) as slow:
         await wait_until(lambda: len(outboxes) == 1, what="the slow reader")
@@ -127,6 +132,46 @@ async def test_slow_reader_loses_oldest_and_does_not_slow_others(start_node) -> 
             while not received or received[-1] != final:
                 received.append(json.loads(await asyncio.wait_for(slow.recv(), 5))["linear"]["x"])
             assert len(received) < published
+
+
+async def test_a_stalled_reader_is_closed_with_4001_and_the_others_keep_their_rate(start_node) -> None:
+    sink = await start_node(
+        lambda settings: Teleop(settings.model_copy(update={"ping_interval_s": 5.0, "ping_timeout_s": 60.0, "stall_timeout_s": 1.0}))
+    )
+    outboxes = sink._participant.endpoints["/echo"].outboxes
+    async with connect(stream_url(sink.url, "/echo", queue=5), max_queue=1) as stalled:
+        await wait_until(lambda: len(outboxes) == 1, what="the stalled reader")
+        (stalled_outbox,) = outboxes
+        async with connect(stream_url(sink.url, "/echo", queue=10_000), max_size=None) as fast:
+            await wait_until(lambda: len(outboxes) == 2, what="both readers")
+            sent = 0
+            fast_count = 0
+
+            async def read_fast() -> None:
+                nonlocal fast_count
+                async for _ in fast:
+                    fast_count += 1
+
+            reading = asyncio.create_task(read_fast())
+            try:
+                # Publish (never reading the stalled socket) until the edge gives up on it.
+                deadline = asyncio.get_running_loop().time() + 30
+                while stalled_outbox in outboxes:
+                    assert asyncio.get_running_loop().time() < deadline, "the stalled reader was never closed"
+                    for _ in range(200):
+                        sink.publisher.publish(Twist(linear={"x": float(sent)}))
+                        sent += 1
+                    await asyncio.sleep(0.001)
+                # The fast reader kept up with everything published, during the stall and after.
+                await wait_until(lambda: fast_count == sent, timeout_s=20, what="the fast reader to catch up")
+            finally:
+                reading.cancel()
+        # The stalled reader, reading at last, gets what it had, then a clean close with 4001.
+        with pytest.raises(ConnectionClosed) as closed:
+            while True:
+                await asyncio.wait_for(stalled.recv(), 10)
+    assert closed.value.rcvd is not None, "a reset, not a close frame"
+    assert closed.value.rcvd.code == 4001 and "stalled" in closed.value.rcvd.reason
 
 
 async def test_rate_option_throttles_to_newest(start_node) -> None:
