@@ -235,7 +235,10 @@ class Player(Node):
             if delay_s <= 0:
                 return
             if delay_s <= _FINE_S:
-                time.sleep(delay_s)
+                await asyncio.sleep(0)  # the loop gets its turn (sockets, timers, Ctrl-C) first
+                delay_s = due_s + self._paused_s - time.monotonic()
+                if delay_s > 0:
+                    time.sleep(delay_s)
                 return
             self._toggled.clear()
             try:
