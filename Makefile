@@ -24,11 +24,11 @@ up: install
 robot: install
 	$(BIN)/skydeck launch robot
 
-# System packages the tests drive for real: Debian's Chromium (browser tests) and the
-# docker-compose tool (validates docker-compose.yml without an engine).
+# System packages the tests drive for real: Debian's Chromium (browser tests), the
+# docker-compose tool (validates docker-compose.yml without an engine) and zsh (completion).
 test-deps:
-	@command -v chromium >/dev/null && command -v docker-compose >/dev/null || \
-		{ apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium docker-compose >/dev/null; }
+	@command -v chromium >/dev/null && command -v docker-compose >/dev/null && command -v zsh >/dev/null || \
+		{ apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium docker-compose zsh >/dev/null; }
 
 test: install test-deps
 	docker-compose -f docker-compose.yml config --quiet

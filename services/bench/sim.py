@@ -23,7 +23,7 @@ from services.bench.processes import BenchError, Worker, free_port, wait_http, w
 from services.bench.topics import CoreHolder
 from sim_server.limits import PHYSICS_HZ
 
-__all__ = ["measure_bare", "measure_node", "measure_robot_bare"]
+__all__ = ["measure_bare", "measure_node", "measure_robot_bare", "sim_argv"]
 
 # What the subscriber reads in each world: (topic, type).
 _WATCHED = {
@@ -42,6 +42,15 @@ def measure_bare(*, boxes: int, steps: int, seed: int = 1) -> dict[str, float]:
         "bare_rtf": reading["bare_steps_per_s"] / PHYSICS_HZ,
         "world_rtf": reading["world_steps_per_s"] / PHYSICS_HZ,
     }
+
+
+def sim_argv(port: int, *, seed: int, boxes: int = 8, world_args: list[str] | None = None) -> list[str]:
+    """``skydeck run sim`` at speed max on ``port``, quiet (the drone world of ``boxes`` boxes
+    unless ``world_args`` say otherwise)."""
+    return [
+        sys.executable, "-m", "services.cli", "run", "sim", "--port", str(port), "--log-level", "warning",
+        "--speed", "max", "--seed", str(seed), *(world_args or ["--boxes", str(boxes)]),
+    ]  # fmt: skip
 
 
 def measure_robot_bare(*, steps: int, seed: int = 1) -> dict[str, float]:
@@ -64,11 +73,7 @@ def measure_node(
     main stream (the drone's pose, the robot's scan)."""
     env = worker_env(core.get())
     port = free_port()
-    world_args = ["--boxes", str(boxes)] if world == "drone" else ["--world", world]
-    argv = [
-        sys.executable, "-m", "services.cli", "run", "sim", "--port", str(port), "--log-level", "warning",
-        "--speed", "max", "--seed", str(seed), *world_args,
-    ]  # fmt: skip
+    argv = sim_argv(port, seed=seed, world_args=["--boxes", str(boxes)] if world == "drone" else ["--world", world])
     url = f"http://127.0.0.1:{port}"
     with Worker("sim-node", argv=argv, env=env) as sim, httpx.Client(timeout=5.0) as client:
         wait_http(f"{url}/health", 60.0, what="simulator node", worker=sim)

@@ -43,6 +43,8 @@ class Settings:
     plot_sizes: tuple[int, ...] = (256, 1024, 4096, 16384, 65536)
     plot_boxes: tuple[int, ...] = (0, 4, 8, 16, 30)
     plot_throughput_s: float = 1.5
+    bag_repetitions: int = 1
+    bag_window_s: float = 2.0
 
 
 QUICK = Settings(
@@ -93,6 +95,7 @@ class Suite:
             self._registry(),
             self._viewers(),
             self._rosbridge(),
+            self._bag(),
         ]
         if self.plots:
             families += [self._throughput_by_size(), self._rtf_by_boxes()]
@@ -520,3 +523,44 @@ class Suite:
 
         return Family("startup", [trial], self.settings.startup_repetitions, summarise,
                       rows=("startup", "system_rss", "system_pss"))  # fmt: skip
+
+    # -- recording and playback ---------------------------------------------------------------
+
+    def _bag(self) -> Family:
+        from services.bench.bag import (
+            measure_playback_timing,
+            measure_record_throughput,
+            measure_record_world,
+        )
+
+        s = self.settings
+        trials = [
+            Trial("world", "bag record -a, simulator at speed max",
+                  lambda: measure_record_world(self.core, window_s=s.bag_window_s)),
+            Trial("throughput", "bag record, small messages as fast as published",
+                  lambda: measure_record_throughput(self.core, duration_s=s.bag_window_s)),
+            Trial("playback", "bag play, 100 Hz + 30 Hz to a listener", lambda: measure_playback_timing(self.core)),
+        ]  # fmt: skip
+
+        def summarise(readings: Readings) -> list[Result]:
+            world, rate, timing = readings["world"], readings["throughput"], readings["playback"]
+            return [
+                Result("bag_record_kept", min(r["kept"] for r in world), "fraction",
+                       target="1.00 (every message of every topic of the drone world at speed max)",
+                       met=min(r["kept"] for r in world) >= 1.0, samples=[r["kept"] for r in world],
+                       detail={"per_topic": world[0]["per_topic"], "messages_per_s": median_of(world, "rate"),
+                               "topics": world[0]["topics"]}),
+                Result("bag_record_throughput", median_of(rate, "rate"), "msg/s",
+                       target=">= 50,000 msg/s (small messages, 2 cores)", met=median_of(rate, "rate") >= 50_000,
+                       samples=[r["rate"] for r in rate],
+                       detail={"kept_fraction": median_of(rate, "kept"), "publisher_rate": median_of(rate, "publisher_rate"),
+                               "recorder_cpu": median_of(rate, "recorder_cpu")}),
+                Result("bag_play_timing_p99", median_of(timing, "p99_ms"), "ms",
+                       target="< 2 ms (arrival vs recorded time)", met=median_of(timing, "p99_ms") < 2.0,
+                       samples=[r["p99_ms"] for r in timing],
+                       detail={"p50_ms": median_of(timing, "p50_ms"), "max_ms": median_of(timing, "max_ms"),
+                               "messages": timing[0]["messages"]}),
+            ]  # fmt: skip
+
+        return Family("bag", trials, s.bag_repetitions, summarise,
+                      rows=("bag_record_kept", "bag_record_throughput", "bag_play_timing_p99"))  # fmt: skip

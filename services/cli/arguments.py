@@ -7,7 +7,7 @@ import math
 
 from services.cli.errors import CliError
 
-__all__ = ["positive_float", "positive_int", "ros_name"]
+__all__ = ["known_type", "node_name", "positive_float", "positive_int", "ros_name"]
 
 
 def positive_int(text: str) -> int:
@@ -53,3 +53,13 @@ def ros_name(text: str) -> str:
         return resolve_name(text)
     except InvalidNameError as error:
         raise CliError(str(error)) from None
+
+
+def known_type(text: str):  # type: ignore[no-untyped-def]
+    """The message or service class named ``text``; CliError (with "did you mean") if none."""
+    from shared_models import UnknownInterfaceError, get_interface
+
+    try:
+        return get_interface(text)
+    except UnknownInterfaceError as error:
+        raise CliError(str(error).splitlines()[0]) from None

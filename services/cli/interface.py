@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from services.cli.errors import CliError
+from services.cli.arguments import known_type
 from services.cli.formatting import to_yaml
 
 __all__ = ["add_parser"]
@@ -31,12 +31,7 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
 
 
 def _lookup(name: str):  # type: ignore[no-untyped-def]
-    from shared_models import UnknownInterfaceError, get_interface
-
-    try:
-        return get_interface(name)
-    except UnknownInterfaceError as error:
-        raise CliError(str(error).splitlines()[0]) from None
+    return known_type(name)
 
 
 def _list(args: argparse.Namespace) -> int:

@@ -1,11 +1,15 @@
-"""``skydeck node list | info`` (rosnode / ros2 node)."""
+"""``skydeck node list | info | ping | kill`` (rosnode / ros2 node)."""
 
 from __future__ import annotations
 
 import argparse
+import os
+import signal
+import time
 
-from services.cli.arguments import node_name
-from services.cli.core_client import get_json
+from services.cli.arguments import node_name, positive_float, positive_int
+from services.cli.core_client import auth_headers, error_detail, get_json, post_json
+from services.cli.errors import CliError
 
 __all__ = ["add_parser"]
 
@@ -18,6 +22,14 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p = verbs.add_parser("info", help="URL, pid, publications, subscriptions and services of a node")
     p.add_argument("node")
     p.set_defaults(func=_info)
+    p = verbs.add_parser("ping", help="check that a node answers, and how fast")
+    p.add_argument("node")
+    p.add_argument("-c", "--count", type=positive_int, default=1, help="pings to send (default 1)")
+    p.add_argument("--timeout", type=positive_float, default=3.0, help="seconds to wait for each answer (default 3)")
+    p.set_defaults(func=_ping)
+    p = verbs.add_parser("kill", help="stop a node for good: its launch does not respawn it")
+    p.add_argument("node")
+    p.set_defaults(func=_kill)
 
 
 def _list(args: argparse.Namespace) -> int:
@@ -42,4 +54,73 @@ def _info(args: argparse.Namespace) -> int:
             print(" None")
         for entity in node[key]:
             print(f" * {entity} [{types.get(entity, '?')}]")
+    return 0
+
+
+def _lookup(name: str) -> dict:  # type: ignore[type-arg]
+    return get_json(f"/api/nodes{name}", missing=f"unknown node {name}: see `skydeck node list`")  # type: ignore[no-any-return]
+
+
+def _ping(args: argparse.Namespace) -> int:
+    import httpx
+
+    name = node_name(args.node)
+    url = _lookup(name)["url"].rstrip("/")
+    print(f"pinging {name} with a timeout of {args.timeout:g}s", flush=True)
+    failed = 0
+    for attempt in range(args.count):
+        started = time.perf_counter()
+        try:
+            reply = httpx.get(url + "/health", headers=auth_headers(), timeout=args.timeout)
+            ok = reply.status_code == 200
+        except httpx.HTTPError as error:
+            ok, reply = False, None
+            print(f"ERROR: connection to {url} failed: {type(error).__name__}", flush=True)
+        if ok:
+            print(f"reply from {url} time={(time.perf_counter() - started) * 1e3:.3f}ms", flush=True)
+        else:
+            failed += 1
+            if reply is not None:
+                print(f"ERROR: {url}/health answered {reply.status_code}", flush=True)
+        if attempt + 1 < args.count:
+            time.sleep(1.0)
+    if failed:
+        raise CliError(f"{name} did not answer {failed} of {args.count} ping(s): is its process alive? see `skydeck node info {name}`")
+    return 0
+
+
+def _kill(args: argparse.Namespace) -> int:
+    from services.launch.control import KILL_SERVICE, LAUNCH_NODE
+
+    name = node_name(args.node)
+    node = _lookup(name)
+    if name in ("/skydeck_core", LAUNCH_NODE):
+        raise CliError(f"{name} is part of Skydeck itself: stop the core or the launch with Ctrl-C")
+    services = {service["name"] for service in get_json("/api/graph")["services"]}
+    if KILL_SERVICE in services:
+        reply = post_json(KILL_SERVICE, {"node": name}, timeout_s=15.0)
+        if reply.status_code != 200:
+            raise CliError(f"the launch could not be asked: {error_detail(reply)} (HTTP {reply.status_code})")
+        answer = reply.json()
+        if answer.get("success"):
+            print(answer["message"])
+            return 0
+        if "not started by this launch" not in answer.get("message", ""):
+            raise CliError(answer.get("message", "the launch refused"))
+    return _kill_local(name, node)
+
+
+def _kill_local(name: str, node: dict) -> int:  # type: ignore[type-arg]
+    """A node no launch started (`skydeck run` in a terminal): SIGTERM its process, if it is here."""
+    url = node.get("url", "")
+    pid = node.get("pid")
+    if not isinstance(pid, int) or not any(host in url for host in ("://127.0.0.1", "://localhost", "://[::1]")):
+        raise CliError(f"{name} runs at {url}, not on this machine, and no launch manages it: stop it where it runs")
+    try:
+        os.kill(pid, signal.SIGTERM)
+    except ProcessLookupError:
+        raise CliError(f"{name} (pid {pid}) is not running any more") from None
+    except PermissionError:
+        raise CliError(f"not allowed to stop {name} (pid {pid}): it belongs to another user") from None
+    print(f"killed {name} (pid {pid}) with SIGTERM")
     return 0

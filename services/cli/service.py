@@ -1,10 +1,10 @@
-"""``skydeck service list | info | type | call`` (rosservice / ros2 service)."""
+"""``skydeck service list | info | type | find | call`` (rosservice / ros2 service)."""
 
 from __future__ import annotations
 
 import argparse
 
-from services.cli.arguments import ros_name
+from services.cli.arguments import known_type, ros_name
 from services.cli.core_client import error_detail, get_json, post_json
 from services.cli.errors import CliError
 from services.cli.formatting import parse_data, to_yaml
@@ -27,6 +27,10 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p = verbs.add_parser("type", help="the type of a service")
     p.add_argument("service")
     p.set_defaults(func=_type)
+
+    p = verbs.add_parser("find", help="the services of a type")
+    p.add_argument("type", help="e.g. std_srvs/srv/Trigger")
+    p.set_defaults(func=_find)
 
     p = verbs.add_parser("call", help="call a service (DATA as YAML or JSON, default {})")
     p.add_argument("service")
@@ -53,6 +57,18 @@ def _info(args: argparse.Namespace) -> int:
 
 def _type(args: argparse.Namespace) -> int:
     print(_lookup(ros_name(args.service))["type"])
+    return 0
+
+
+def _find(args: argparse.Namespace) -> int:
+    from shared_models import ServiceType
+
+    found = known_type(args.type)
+    if not issubclass(found, ServiceType):
+        raise CliError(f"{found.__ros_type__} is a message type: use `skydeck topic find`")
+    for service in get_json("/api/graph")["services"]:
+        if service["type"] == found.__ros_type__:
+            print(service["name"])
     return 0
 
 

@@ -1,21 +1,21 @@
-"""``skydeck topic list | info | echo | hz | pub`` (rostopic / ros2 topic)."""
+"""``skydeck topic list | info | type | find | echo | hz | bw | delay | pub`` (rostopic / ros2 topic)."""
 
 from __future__ import annotations
 
 import argparse
 import asyncio
 import json
-import math
 import time
-from collections import deque
 
 from websockets.asyncio.client import connect
-from websockets.exceptions import ConnectionClosed, InvalidHandshake, InvalidStatus
+from websockets.exceptions import ConnectionClosed, InvalidHandshake
 
-from services.cli.arguments import positive_float, positive_int, ros_name
+from services.cli.arguments import known_type, positive_float, positive_int, ros_name
 from services.cli.core_client import auth_headers, core_url, get_json, ws_url
 from services.cli.errors import CliError
-from services.cli.formatting import parse_data, to_yaml
+from services.cli.formatting import message_view, parse_data, to_csv, to_yaml
+from services.cli.streams import frames, warn_if_unpublished
+from services.cli.topic_stats import add_stats_parsers
 
 __all__ = ["add_parser"]
 
@@ -33,20 +33,28 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.add_argument("topic")
     p.set_defaults(func=_info)
 
+    p = verbs.add_parser("type", help="the type of a topic")
+    p.add_argument("topic")
+    p.set_defaults(func=_type)
+
+    p = verbs.add_parser("find", help="the topics of a type")
+    p.add_argument("type", help="e.g. geometry_msgs/msg/PoseStamped")
+    p.set_defaults(func=_find)
+
     p = verbs.add_parser("echo", help="print the messages of a topic")
     p.add_argument("topic")
     p.add_argument("--once", action="store_true", help="print one message and exit")
     p.add_argument("-n", "--count", type=positive_int, help="exit after N messages")
     p.add_argument("--rate", type=positive_float, help="at most HZ messages a second (newest wins)")
     p.add_argument("--json", action="store_true", help="one JSON object per line instead of YAML")
+    p.add_argument("--csv", action="store_true", help="one line of comma-separated values per message")
+    p.add_argument("--field", metavar="PATH", help="only this field, e.g. pose.position or ranges[0]")
+    p.add_argument("--no-arr", action="store_true", help="print arrays as their length only")
+    p.add_argument("--qos-depth", type=positive_int, metavar="N", help="messages the stream keeps while printing (default 100)")
     p.add_argument("--timeout", type=positive_float, help="give up after S seconds without a message")
     p.set_defaults(func=_echo)
 
-    p = verbs.add_parser("hz", help="print the publishing rate of a topic")
-    p.add_argument("topic")
-    p.add_argument("-w", "--window", type=positive_int, default=100, help="messages in the rate window")
-    p.add_argument("-n", "--count", type=positive_int, help="exit after N reports")
-    p.set_defaults(func=_hz)
+    add_stats_parsers(verbs)
 
     p = verbs.add_parser("pub", help="publish a message (DATA as YAML or JSON)")
     p.add_argument("topic")
@@ -87,41 +95,45 @@ def _info(args: argparse.Namespace) -> int:
     return 0
 
 
-async def _frames(name: str, *, rate: float | None = None, queue: int | None = None):  # type: ignore[no-untyped-def]
-    url = ws_url(name, rate=rate, queue=queue)
-    try:
-        async with connect(url, additional_headers=auth_headers(), compression=None, max_size=None) as websocket:
-            async for frame in websocket:
-                yield frame
-            if websocket.close_code not in (1000, 1001, None):
-                raise CliError(f"{name}: the core closed the stream ({websocket.close_code}): {websocket.close_reason}")
-    except (OSError, InvalidHandshake, TimeoutError) as error:
-        if isinstance(error, InvalidStatus):
-            raise CliError(f"the core refused the stream of {name}: HTTP {error.response.status_code}") from None
-        raise CliError(
-            f"cannot reach the core at {core_url()}: is it running? start it with `skydeck core` (or `make up`)"
-        ) from None
+def _type(args: argparse.Namespace) -> int:
+    name = ros_name(args.topic)
+    topic = get_json(f"/api/topics{name}", missing=f"unknown topic {name}: see `skydeck topic list`")
+    print(topic["type"])
+    return 0
 
 
-def _warn_if_unpublished(name: str) -> None:
-    topics = {t["name"]: t for t in get_json("/api/graph")["topics"]}
-    if name not in topics or not topics[name]["publishers"]:
-        print(f"WARNING: topic [{name}] does not appear to be published yet", flush=True)
+def _find(args: argparse.Namespace) -> int:
+    from shared_models import Message
+
+    type_name = known_type(args.type).__ros_type__  # an unknown name is an error, not "none found"
+    if not issubclass(known_type(args.type), Message):
+        raise CliError(f"{type_name} is a service type: use `skydeck service find`")
+    for topic in get_json("/api/graph")["topics"]:
+        if topic["type"] == type_name:
+            print(topic["name"])
+    return 0
 
 
 def _echo(args: argparse.Namespace) -> int:
     name = ros_name(args.topic)
-    _warn_if_unpublished(name)
+    warn_if_unpublished(name)
     limit = 1 if args.once else args.count
+    show = message_view(field=args.field, no_arr=args.no_arr)
 
     async def run() -> None:
         printed = 0
         async with asyncio.timeout(args.timeout):
-            async for frame in _frames(name, rate=args.rate):
-                if args.json:
+            async for frame in frames(name, rate=args.rate, queue=args.qos_depth):
+                if args.json and show is None:
                     print(frame, flush=True)
                 else:
-                    print(to_yaml(json.loads(frame)) + "\n---", flush=True)
+                    value = json.loads(frame) if show is None else show(json.loads(frame))
+                    if args.csv:
+                        print(to_csv(value), flush=True)
+                    elif args.json:
+                        print(json.dumps(value, separators=(",", ":")), flush=True)
+                    else:
+                        print(to_yaml(value) + "\n---", flush=True)
                 printed += 1
                 if limit is not None and printed >= limit:
                     return
@@ -133,60 +145,15 @@ def _echo(args: argparse.Namespace) -> int:
     return 0
 
 
-def _hz(args: argparse.Namespace) -> int:
-    name = ros_name(args.topic)
-    _warn_if_unpublished(name)
-
-    async def run() -> None:
-        arrivals: deque[float] = deque(maxlen=args.window + 1)
-
-        async def count_arrivals() -> None:
-            # Its own task: a report's deadline must never cancel a read (that ends the stream).
-            async for _ in _frames(name, queue=10_000):
-                arrivals.append(time.monotonic())
-
-        reader = asyncio.create_task(count_arrivals())
-        try:
-            reports = 0
-            next_report = time.monotonic() + 1.0
-            while args.count is None or reports < args.count:
-                await asyncio.wait({reader}, timeout=max(0.0, next_report - time.monotonic()))
-                if reader.done():
-                    reader.result()  # the stream ended: its error, if any, is the CLI's error
-                    return
-                next_report += 1.0
-                _print_rate(arrivals)
-                reports += 1
-        finally:
-            reader.cancel()
-
-    asyncio.run(run())
-    return 0
-
-
-def _print_rate(arrivals: deque[float]) -> None:
-    if len(arrivals) < 2:
-        print("no new messages", flush=True)
-        return
-    gaps = [b - a for a, b in zip(arrivals, list(arrivals)[1:], strict=False)]
-    mean = sum(gaps) / len(gaps)
-    std = math.sqrt(sum((g - mean) ** 2 for g in gaps) / len(gaps))
-    print(f"average rate: {1.0 / mean:.3f}", flush=True)
-    print(f"\tmin: {min(gaps):.3f}s max: {max(gaps):.3f}s std dev: {std:.5f}s window: {len(gaps)}", flush=True)
-
-
 def _pub(args: argparse.Namespace) -> int:
     # The message types and the validation, here and not at the top: see cli/interface.py.
     from pydantic import ValidationError
 
     from services.runtime.edge.frames import describe_validation_error
-    from shared_models import Message, UnknownInterfaceError, get_interface
+    from shared_models import Message
 
     name = ros_name(args.topic)
-    try:
-        msg_type = get_interface(args.type)
-    except UnknownInterfaceError as error:
-        raise CliError(str(error).splitlines()[0]) from None
+    msg_type = known_type(args.type)
     if not issubclass(msg_type, Message):
         raise CliError(f"{args.type} is a service type: use `skydeck service call`")
     try:

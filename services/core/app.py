@@ -32,6 +32,8 @@ from services.core.protocols.foxglove import FoxgloveEndpoint
 from services.core.protocols.rosapi import host_rosapi
 from services.core.protocols.rosbridge import RosbridgeEndpoint
 from services.core.protocols.servers import EndpointServers, bind_endpoints
+from services.core.recordings import Recordings, default_recordings_dir
+from services.core.recordings import router as recordings_router
 from services.core.registry import Registry
 from services.core.service_calls import ServiceCalls
 from services.core.sessions import serve_session
@@ -84,12 +86,14 @@ def create_app(
         app.state.foxglove = FoxgloveEndpoint(access)
         endpoints = EndpointServers(settings, endpoint_sockets if endpoint_sockets is not None else bind_endpoints(settings))
         app.state.endpoints = endpoints
+        app.state.recordings = Recordings(settings.recordings_dir or default_recordings_dir(), core_node, registry)
         await endpoints.start({"rosbridge": app.state.rosbridge.serve, "foxglove": app.state.foxglove.serve})
         try:
             yield
         finally:
             await endpoints.stop()
             app.state.foxglove.close()
+            app.state.recordings.close()
             core_node.stop()
             await http.aclose()
 
@@ -114,6 +118,7 @@ def create_app(
     app.add_middleware(SameOriginOnly)
     install_error_handlers(app)
     app.include_router(api_router)
+    app.include_router(recordings_router)
 
     @app.get("/health", tags=["core"])
     async def health() -> dict[str, Any]:

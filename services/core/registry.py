@@ -220,9 +220,11 @@ class Registry:
                 for entity in entities:
                     topic = topics.setdefault(
                         entity.name,
-                        {"name": entity.name, "type": entity.type, "publishers": [], "subscribers": [], "rate_hz": None},
+                        {"name": entity.name, "type": entity.type, "publishers": [], "subscribers": [], "rate_hz": None,
+                         "latched": False},
                     )
                     topic["type"] = topic["type"] or entity.type
+                    topic["latched"] = topic["latched"] or (role == "publishers" and entity.latched)
                     topic[role].append(name)
             for topic_name, (_, _, rate) in record.counters.items():
                 if topic_name in topics and rate is not None:

@@ -3,6 +3,8 @@ ports of the protocol endpoints it serves beside its own (rosbridge, Foxglove)."
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from pydantic import Field
 
 from services.runtime.settings import ProcessSettings
@@ -26,3 +28,5 @@ class CoreSettings(ProcessSettings):
     # at /rosbridge on the core's own port, whatever this says.
     rosbridge_port: int = Field(default=9090, ge=0, le=65535, description="rosbridge v2 endpoint; 0: off")
     foxglove_port: int = Field(default=8765, ge=0, le=65535, description="Foxglove WebSocket endpoint; 0: off")
+    # Recordings made from the dashboard (`/api/recordings`); None: $XDG_DATA_HOME/skydeck/recordings.
+    recordings_dir: Path | None = None

@@ -24,14 +24,17 @@ from collections import deque
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TextIO
+from typing import TYPE_CHECKING, TextIO
 
 from services.launch.child_process import ChildProcess, Health, describe_exit, signal_group, spawn
 from services.launch.errors import LaunchError
 from services.launch.plan import LaunchOptions, NodePlan, core_url, default_command, plan_launch
 from services.launch.spec import LaunchSpec, find_launch_file, load_launch_file
-from services.runtime.http_client import HttpClient
+from services.runtime.http_client import HttpClient, HttpError
 from services.runtime.ports import port_is_free
+
+if TYPE_CHECKING:
+    from services.runtime.node import Node
 
 __all__ = ["CommandFor", "NodeState", "NodeStatus", "Supervisor", "run_launch"]
 
@@ -57,6 +60,7 @@ class NodeState(enum.Enum):
     READY = "ready"
     BACKOFF = "backoff"  # died; respawning after a pause
     EXITED = "exited"  # died and is not respawned
+    KILLED = "killed"  # stopped on request (`skydeck node kill`); not respawned
     STOPPED = "stopped"  # stopped by the supervisor
 
 
@@ -87,6 +91,7 @@ class _Child:
         self.ready_count = 0
         self.exit_code: int | None = None
         self.backoff_s = BACKOFF_FIRST_S
+        self.kill_requested = False
         self.stderr_tail: deque[str] = deque(maxlen=_STDERR_TAIL_LINES)
 
     @property
@@ -102,7 +107,9 @@ class Supervisor:
     """Starts a launch's nodes, respawns the ones that die and stops them all on request.
 
     ``command_for`` builds each node's argv (tests substitute small programs); ``out`` receives
-    every line (default: standard output). Raises ``LaunchError`` at once for bad options.
+    every line (default: standard output); ``control`` starts the launch's own node once the
+    core is up (``/skydeck_launch``, which ``skydeck node kill`` asks). Raises ``LaunchError``
+    at once for bad options.
     """
 
     def __init__(
@@ -113,6 +120,7 @@ class Supervisor:
         command_for: CommandFor = default_command,
         out: TextIO | None = None,
         stop_timeout_s: float = STOP_TIMEOUT_S,
+        control: bool = False,
     ) -> None:
         given = options or LaunchOptions()
         self.options = given.with_seed()
@@ -133,6 +141,8 @@ class Supervisor:
         self._start_idle = asyncio.Event()
         self._start_idle.set()
         self._changed = asyncio.Event()
+        self._control_wanted = control
+        self._control: Node | None = None
 
     # -- public ---------------------------------------------------------------------------------
 
@@ -155,6 +165,8 @@ class Supervisor:
                     if self._stopping:
                         return
                     await self._start_first(child)
+                    if child.plan.is_core and self._control_wanted:
+                        await self._start_control()
             finally:
                 self._start_idle.set()
         except BaseException:
@@ -170,6 +182,8 @@ class Supervisor:
         if self._stopped:
             return
         self._stopped = True
+        if self._control is not None:
+            await self._control.stop()
         started = [child for child in self._children.values() if child.process is not None]
         running = sum(child.running for child in started)
         if running:
@@ -238,7 +252,7 @@ class Supervisor:
         while child.ready_count < count:
             if self._stopping:
                 raise LaunchError(f"{name} will not become ready: the launch is stopping")
-            if child.state is NodeState.EXITED:
+            if child.state in (NodeState.EXITED, NodeState.KILLED):
                 raise LaunchError(f"{name} exited (code {child.exit_code}) and is not respawned")
             changed = self._changed
             await changed.wait()
@@ -346,6 +360,11 @@ class Supervisor:
                 return
             ran_s = time.monotonic() - child.started_at
             code = await self._reap(child)
+            if child.kill_requested:
+                child.state = NodeState.KILLED
+                self._say(f"{plan.name} killed on request (skydeck node kill); not respawned")
+                self._notify()
+                return
             if not plan.respawn:
                 child.state = NodeState.EXITED
                 self._say(
@@ -391,6 +410,43 @@ class Supervisor:
                 await self._terminate(child)
                 why = f"did not answer /health within {plan.ready_timeout_s:g} s"
             self._say(f"{plan.name} {why}; respawning in {child.backoff_s:g} s")
+
+    # -- killing on request -------------------------------------------------------------------
+
+    async def kill(self, node: str) -> tuple[bool, str]:
+        """Stop the child running graph node ``node`` for good (``skydeck node kill``):
+        ``(True, what was done)``, or ``(False, why not)``."""
+        child = await self._child_of_node(node)
+        if child is None:
+            return False, f"{node} was not started by this launch: stop it where it was started"
+        if child.plan.is_core:
+            return False, "the core is not killed by `node kill`: stop the whole launch with Ctrl-C"
+        if not child.running or child.pid is None:
+            return False, f"{node} is not running ({child.state.value})"
+        pid = child.pid
+        child.kill_requested = True
+        await self._terminate(child)
+        return True, f"killed {node} (launch node {child.plan.name}, pid {pid}); not respawned"
+
+    async def _child_of_node(self, node: str) -> _Child | None:
+        """The child whose process registered ``node`` (matched by pid), else one named so."""
+        if self._http is not None:
+            with contextlib.suppress(HttpError, ValueError):
+                reply = await self._http.get(f"{self.core_url}/api/nodes{node}", timeout_s=2.0)
+                if reply.status == 200:
+                    pid = reply.json().get("pid")
+                    for child in self._children.values():
+                        if child.pid == pid and child.running:
+                            return child
+        return self._children.get(node.lstrip("/"))
+
+    async def _start_control(self) -> None:
+        from services.launch.control import LaunchControl  # the node SDK: only when asked for
+        from services.runtime.settings import NodeSettings
+
+        control = LaunchControl(self.kill, NodeSettings(core_url=self.core_url, port=0, host="127.0.0.1"))
+        await control.start()
+        self._control = control
 
     # -- stopping -----------------------------------------------------------------------------
 
@@ -467,4 +523,4 @@ def run_launch(
     Raises ``LaunchError`` (``LaunchFileError`` for the file) with one line to show the user.
     """
     spec = load_launch_file(find_launch_file(path))
-    return asyncio.run(Supervisor(spec, options, out=out).run())
+    return asyncio.run(Supervisor(spec, options, out=out, control=True).run())

@@ -89,21 +89,39 @@ class TopicEndpoint:
         for subscription in self.subscriptions:
             subscription.receive(msg)
 
+    def dispatch_frame(self, frame: str) -> None:
+        """Deliver a JSON frame this participant publishes as it is (already serialised, trusted:
+        a recording played back); other encodings are made from it if readers want them."""
+        frames = Frames.received(frame, self.msg_type)
+        self.latest = frames
+        self.published_count += 1
+        for outbox in self.outboxes:
+            outbox.push(frames.get(outbox.encoding))
+        for tap in self.taps:
+            tap.push(frames.get(tap.encoding))
+        for subscription, msg in self._parsed_for(frames):
+            subscription.enqueue(msg)
+
     def receive_link_frame(self, frame: Frame) -> None:
         """A frame from a remote publisher, as received: parsed only if someone here needs it."""
         frames = Frames.received(frame, self.msg_type)
         self.latest = frames
         for tap in self.taps:
             tap.push(frames.get(tap.encoding))
+        for subscription, msg in self._parsed_for(frames):
+            subscription.receive(msg)
+
+    def _parsed_for(self, frames: Frames) -> list[tuple[Subscription, Message]]:
+        """Each local subscription with the message, parsed once; none if nobody here needs it
+        or it is not of the topic's type (then it is dropped, with a warning)."""
         if not self.subscriptions or self.msg_type is None:
-            return
+            return []
         try:
             msg = frames.message()
         except FrameRejected as error:
             logger.warning("dropped a message on %s: %s", self.name, error.reason)
-            return
-        for subscription in self.subscriptions:
-            subscription.receive(msg)
+            return []
+        return [(subscription, msg) for subscription in self.subscriptions]
 
     def frames_of(self, msg: Message, frame: Frame) -> Frames:
         """The frames of ``msg``, parsed from ``frame``: the frame itself if it named every field,

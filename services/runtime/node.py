@@ -29,7 +29,7 @@ from services.runtime.server import AppServer
 from services.runtime.service import Service
 from services.runtime.session import CoreSession, RegistrationRejected
 from services.runtime.settings import NodeSettings, process_settings, reachable_host
-from services.runtime.subscription import Subscription
+from services.runtime.subscription import RawSubscription, Subscription
 from services.runtime.timer import Timer
 from shared_models import Message, ServiceType, resolve_name, resolve_node_name
 from shared_models.builtin_interfaces import Time
@@ -102,7 +102,7 @@ class Node(ParametersMixin):
         self._http: HttpClient | None = None
         self._rosout = self.create_publisher(Log, _ROSOUT, 100)
         self._logger = NodeLogger(self._name, self._stamp, self._rosout.publish, level=self.settings.log_level)
-        self._clock_subscription: Subscription | None = None
+        self._clock_subscription: Subscription | RawSubscription | None = None
         self._parameter_events = self.create_publisher(ParameterEvent, PARAMETER_EVENTS, 1000)
         arguments = process_ros_arguments() if use_global_arguments else None
         if cli_args:
@@ -188,11 +188,26 @@ class Node(ParametersMixin):
         return publisher
 
     def create_subscription(
-        self, msg_type: type[M], topic: str, callback: Callable[[M], Any], qos_profile: int = 10
-    ) -> Subscription:
-        """Call ``callback(msg)`` for every message on ``topic``; ``qos_profile`` is the queue depth."""
+        self,
+        msg_type: type[M],
+        topic: str,
+        callback: Callable[[M], Any] | Callable[[str], Any],
+        qos_profile: int = 10,
+        *,
+        raw: bool = False,
+    ) -> Subscription | RawSubscription:
+        """Call ``callback(msg)`` for every message on ``topic``; ``qos_profile`` is the queue depth.
+
+        ``raw=True`` (as rclpy's): ``callback(frame)`` gets each message's JSON text as received,
+        unparsed; it runs where the frame arrives, so it must be quick (a recorder's write).
+        """
         self._check_alive()
         endpoint = self._participant.endpoint(msg_type, topic)
+        if raw:
+            tap = RawSubscription(endpoint.name, msg_type, callback, _depth(qos_profile))  # type: ignore[arg-type]
+            endpoint.taps.add(tap)
+            self._changed()
+            return tap
         subscription = Subscription(endpoint.name, msg_type, callback, _depth(qos_profile))
         endpoint.subscriptions.append(subscription)
         self._subscriptions.append(subscription)

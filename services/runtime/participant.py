@@ -13,12 +13,15 @@ import os
 from collections.abc import Callable, Coroutine
 from typing import Any
 
+from services.runtime.edge.encoding import Encoding
 from services.runtime.edge.links import PublisherLink
 from services.runtime.endpoint import TopicEndpoint
 from services.runtime.errors import NodeError
 from services.runtime.protocol import Entity, NodeDescription, PublisherAddress
 from services.runtime.service import Service
 from services.runtime.settings import ProcessSettings
+from services.runtime.subscription import RawSubscription
+from services.runtime.wire import MAX_QUEUE
 from shared_models import Message, resolve_name
 
 __all__ = ["Participant"]
@@ -130,13 +133,22 @@ class Participant:
             self.links.pop(key)[1].cancel()
         if not wanted or endpoint is None or self._spawn is None:
             return
-        queue_size = max((s.queue_size for s in endpoint.subscriptions), default=100)
+        depths = [s.queue_size for s in endpoint.subscriptions]
+        depths += [tap.queue_size for tap in endpoint.taps if isinstance(tap, RawSubscription)]
+        queue_size = min(max(depths, default=100), MAX_QUEUE)  # a publisher keeps at most MAX_QUEUE per reader
+        # Nodes link in msgpack; a topic read here only raw (a recorder) links in JSON, so its
+        # frames come as the publisher serialised them, never converted here.
+        raw_only = bool(endpoint.taps) and not endpoint.subscriptions and all(
+            isinstance(tap, RawSubscription) for tap in endpoint.taps
+        )
+        encoding = Encoding.JSON if raw_only else Encoding.MSGPACK
         for url in wanted:
             if (topic, url) not in self.links:
                 link = PublisherLink(
                     url,
                     topic,
                     endpoint.receive_link_frame,
+                    encoding=encoding,
                     queue_size=queue_size,
                     max_message_bytes=self.settings.max_message_bytes,
                     ping_interval_s=self.settings.ping_interval_s,

@@ -23,11 +23,16 @@ class Publisher(Generic[M]):
         self._has_header = "header" in msg_type.model_fields
         self._seq = 0
 
-    def publish(self, msg: M) -> None:
+    def publish(self, msg: M | str) -> None:
         """Publish ``msg`` to every subscriber; fills ``header.seq`` when the type has a header.
 
+        A ``str`` is a message already serialised (its JSON frame, as rclpy's ``publish`` takes
+        a serialised message): sent as it is, unvalidated, its ``seq`` untouched (``bag play``).
         Never blocks: slow readers lose their oldest messages instead of slowing this call.
         """
+        if isinstance(msg, str):
+            self._endpoint.dispatch_frame(msg)
+            return
         if type(msg) is not self.msg_type:
             raise TypeError(
                 f"publisher of {self.topic_name} takes {self.msg_type.__ros_type__} "

@@ -11,9 +11,10 @@ from collections.abc import Awaitable, Callable
 from typing import Any
 
 from services.runtime.callbacks import call_user
+from services.runtime.edge.outbox import Outbox
 from shared_models import Message
 
-__all__ = ["Subscription"]
+__all__ = ["RawSubscription", "Subscription"]
 
 # A plain callback that takes less than this on average keeps up with any burst a socket hands
 # over (one read holds hundreds of frames): when its queue is full, the oldest message goes to
@@ -121,3 +122,33 @@ class Subscription:
             self._plain = False
             return result
         return None
+
+
+class RawSubscription(Outbox):
+    """Calls ``callback(frame)`` with each frame of a topic as received, never parsed
+    (rclpy's ``raw=True``): what a recorder needs, serialised once by the publisher.
+
+    It is a tap on the topic's endpoint, so it sees every frame the participant gets: from each
+    remote publisher, from clients of this node, and its own publications, always as JSON text
+    (a topic read only raw links in JSON, so nothing is converted). The callback runs where the
+    frame arrives, so it must be a quick plain function; ``queue_size`` is the depth each
+    publisher keeps for this participant while it reads.
+    """
+
+    def __init__(self, topic_name: str, msg_type: type[Message], callback: Callable[[str], Any], queue_size: int) -> None:
+        if inspect.iscoroutinefunction(callback):
+            raise TypeError(f"a raw subscription's callback runs where each frame arrives: give {topic_name} a plain function")
+        super().__init__(1)
+        self.topic_name = topic_name
+        self.msg_type = msg_type
+        self.callback = callback
+        self.queue_size = queue_size
+        self._logger = logging.getLogger("skydeck.runtime")
+
+    def push(self, frame: str | bytes) -> None:
+        if not isinstance(frame, str):  # its encoding is JSON: every endpoint hands it text
+            raise TypeError(f"raw subscription of {self.topic_name} got a binary frame")
+        try:
+            self.callback(frame)
+        except Exception:
+            self._logger.exception("raw subscription callback of %s raised; the node keeps running", self.topic_name)

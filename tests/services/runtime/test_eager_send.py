@@ -8,7 +8,7 @@ import asyncio
 import pytest
 
 from services.runtime.edge.outbox import Outbox
-from services.runtime.edge.pump import _EagerSend
+from services.runtime.edge.pump import _EagerSend, _messages
 
 pytestmark = pytest.mark.timeout(10)
 
@@ -31,7 +31,7 @@ class FakeSocket:
 
 async def test_a_send_that_does_not_wait_is_done_inside_the_call() -> None:
     socket = FakeSocket()
-    eager = _EagerSend(socket.send, Outbox(10))
+    eager = _EagerSend(socket.send, Outbox(10), _messages)
     assert eager("a") and eager("b")
     assert socket.written == ["a", "b"]  # no turn of the event loop in between
     await eager.settled()
@@ -40,7 +40,7 @@ async def test_a_send_that_does_not_wait_is_done_inside_the_call() -> None:
 async def test_a_send_that_must_wait_finishes_later_and_later_frames_queue_behind_it() -> None:
     socket = FakeSocket()
     socket.writable.clear()  # the transport paused writing
-    eager = _EagerSend(socket.send, Outbox(10))
+    eager = _EagerSend(socket.send, Outbox(10), _messages)
     assert eager("a")  # taken: it will be written when the socket drains
     assert not eager("b")  # declined: the writer queues it behind "a"
     assert socket.written == []
@@ -53,14 +53,14 @@ async def test_a_send_that_must_wait_finishes_later_and_later_frames_queue_behin
 async def test_a_broken_socket_declines_so_the_writer_meets_the_error() -> None:
     socket = FakeSocket()
     socket.broken = True
-    eager = _EagerSend(socket.send, Outbox(10))
+    eager = _EagerSend(socket.send, Outbox(10), _messages)
     assert not eager("a")
 
 
 async def test_an_error_after_waiting_is_raised_by_settled() -> None:
     socket = FakeSocket()
     socket.writable.clear()
-    eager = _EagerSend(socket.send, Outbox(10))
+    eager = _EagerSend(socket.send, Outbox(10), _messages)
     assert eager("a")
     socket.broken = True
     socket.writable.set()
@@ -71,7 +71,7 @@ async def test_an_error_after_waiting_is_raised_by_settled() -> None:
 async def test_cancel_stops_a_waiting_send() -> None:
     socket = FakeSocket()
     socket.writable.clear()
-    eager = _EagerSend(socket.send, Outbox(10))
+    eager = _EagerSend(socket.send, Outbox(10), _messages)
     assert eager("a")
     eager.cancel()
     await asyncio.sleep(0)

@@ -14,6 +14,7 @@ import { MapView } from "./map.js";
 import { ParametersPanel } from "./parameters.js";
 import { Plots } from "./plots.js";
 import { Room, topicIn } from "./room.js";
+import { RecorderPanel } from "./recorder.js";
 import { StatusBanner } from "./status.js";
 import { Tabs } from "./tabs.js";
 import { Teleop } from "./teleop.js";
@@ -191,6 +192,8 @@ function applyWorld() {
 world.addEventListener("world", applyWorld);
 $("teleop-robot").addEventListener("change", (event) => teleop.setTarget("robot", topicIn(event.target.value, "cmd_vel")));
 status.start();
+const recorder = new RecorderPanel({ toggle: $("record-toggle"), status: $("record-status"), list: $("recording-list") });
+recorder.start();
 
 const copy = (value) => (value == null ? null : structuredClone(value));
 
@@ -256,6 +259,8 @@ window.skydeck = Object.freeze({
   },
   get parameters() {
     return { node: parameters.node, rows: copy(parameters.rows), last: copy(parameters.last) };
+  get recorder() {
+    return { recording: recorder.recording, current: copy(recorder.current), files: copy(recorder.files), error: recorder.error };
   },
   layers: () => layers.snapshot(),
   sockets: () => socketStates(),

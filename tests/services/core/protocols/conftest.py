@@ -162,55 +162,15 @@ Connect = Callable[..., Awaitable[Any]]
 
 
 class Tuned(Node):
-    """A node with ROS 2's parameter services and /parameter_events, served by the test itself
-    (the same services and types every node serves: rcl_interfaces)."""
+    """A node with three parameters: the runtime serves ROS 2's parameter services for them and
+    publishes /parameter_events (rcl_interfaces), as for every node."""
 
     def __init__(self, settings: NodeSettings) -> None:
-        from shared_models.rcl_interfaces import (
-            GetParameters,
-            ListParameters,
-            ParameterEvent,
-            SetParameters,
-        )
-
         super().__init__("tuned", settings=settings)
-        self.values: dict[str, Any] = {"max_speed": 2.5, "mode": "auto", "retries": 3}
-        self.events = self.create_publisher(ParameterEvent, "/parameter_events", 10)
-        self.create_service(ListParameters, "/tuned/list_parameters", self.list_parameters)
-        self.create_service(GetParameters, "/tuned/get_parameters", self.get_parameters)
-        self.create_service(SetParameters, "/tuned/set_parameters", self.set_parameters)
+        self.declare_parameter("max_speed", 2.5)
+        self.declare_parameter("mode", "auto")
+        self.declare_parameter("retries", 3)
 
-    def list_parameters(self, request: Any) -> Any:
-        from shared_models.rcl_interfaces import ListParametersResponse, ListParametersResult
-
-        return ListParametersResponse(result=ListParametersResult(names=sorted(self.values)))
-
-    def get_parameters(self, request: Any) -> Any:
-        from services.core.protocols.parameters import to_value
-        from shared_models.rcl_interfaces import GetParametersResponse, ParameterValue
-
-        return GetParametersResponse(
-            values=[to_value(self.values[name]) if name in self.values else ParameterValue() for name in request.names]
-        )
-
-    def set_parameters(self, request: Any) -> Any:
-        from services.core.protocols.parameters import from_value
-        from shared_models.rcl_interfaces import (
-            ParameterEvent,
-            SetParametersResponse,
-            SetParametersResult,
-        )
-
-        results, changed = [], []
-        for parameter in request.parameters:
-            value, _ = from_value(parameter.value)
-            old = self.values.get(parameter.name)
-            if old is None or type(old) is not type(value):
-                results.append(SetParametersResult(successful=False, reason=f"{parameter.name}: wrong type or unknown"))
-                continue
-            self.values[parameter.name] = value
-            results.append(SetParametersResult(successful=True))
-            changed.append(parameter)
-        if changed:
-            self.events.publish(ParameterEvent(node="/tuned", changed_parameters=changed))
-        return SetParametersResponse(results=results)
+    @property
+    def values(self) -> dict[str, Any]:
+        return {name: self.get_parameter(name).value for name in ("max_speed", "mode", "retries")}

@@ -1,9 +1,6 @@
 """Node parameters through both protocols: rosapi's get_param/set_param/get_param_names and
 Foxglove's getParameters/setParameters/subscribeParameterUpdates, on top of the node's own
-rcl_interfaces services (list/get/set_parameters) and /parameter_events.
-
-The nodes' parameter services come from the runtime (another branch); until they land here, the
-node below serves them itself, with the same names and types."""
+rcl_interfaces services (list/get/set_parameters) and /parameter_events."""
 
 from __future__ import annotations
 
@@ -47,7 +44,7 @@ async def test_rosapi_reads_and_writes_parameters(bridge: Bridge, tuned: Tuned) 
         set_int_on_float = await call(ws, "rosapi/set_param", "s", args={"name": "/tuned.max_speed", "value": "3"})
         assert set_int_on_float["values"]["successful"] is True and tuned.values["max_speed"] == 3.0
         refused = await call(ws, "/rosapi/set_param", "r", args={"name": "/tuned:mode", "value": "7"})
-        assert refused["values"] == {"successful": False, "reason": "mode: wrong type or unknown"}
+        assert refused["values"] == {"successful": False, "reason": "parameter 'mode' is of type string; got integer 7"}
         missing = await call(ws, "/rosapi/get_param", "m", args={"name": "/tuned:nope", "default_value": "0"})
         assert missing["values"]["successful"] is False and missing["values"]["value"] == "0"
         unnamed = await call(ws, "/rosapi/get_param", "u", args={"name": "max_speed"})
@@ -76,7 +73,7 @@ async def test_foxglove_set_refused_gets_a_status(bridge: Bridge, tuned: Tuned) 
             message = json.loads(await ws.recv())
             if message["op"] == "status":
                 break
-        assert message["level"] == 2 and "/tuned.mode was not set: mode: wrong type or unknown" in message["message"]
+        assert message["level"] == 2 and "/tuned.mode was not set: parameter 'mode' is of type string; got integer 1" in message["message"]
         while message["op"] != "parameterValues":
             message = json.loads(await ws.recv())
         assert message == {"op": "parameterValues", "parameters": [{"name": "/tuned.mode", "value": "auto"}], "id": "x"}

@@ -1,0 +1,256 @@
+"""``skydeck bag play``: a node that publishes a recording again, with its timing (rosbag play).
+
+    with BagReader("run.mcap") as bag:
+        player = Player(bag, PlayOptions(rate=2.0, clock=True))
+        asyncio.run(player.run_until_stopped())    # ends when the recording has been played
+
+Each message is published as recorded, its frame untouched (``publish(frame)``), at its receive
+time relative to the first one played, divided by ``rate``. ``clock`` publishes ``/clock`` from
+the recording, so nodes with ``use_sim_time`` run on the recording's time: the recording's own
+``/clock`` when it has one (the simulator's time, which its headers are stamped in), else its
+receive times, at ``clock_hz``. ``pause()`` / ``resume()`` hold the timeline (the space bar
+does it in a terminal); a paused player publishes nothing, ``/clock`` included.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import math
+import os
+import time
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from services.bag.errors import BagError
+from services.bag.reader import BagReader
+from services.bag.schemas import MESSAGE_ENCODING, message_type
+from services.runtime.node import Node
+from services.runtime.publisher import Publisher
+from services.runtime.settings import NodeSettings
+from shared_models.builtin_interfaces import Time
+
+__all__ = ["CLOCK_TOPIC", "PlayOptions", "Player", "check_types"]
+
+CLOCK_TOPIC = "/clock"
+_YIELD_EVERY = 200  # messages published back to back before the loop gets a turn
+_QUEUE_SIZE = 1000
+_FINE_S = 0.0015  # the last stretch of a wait, slept precisely (see Player._wait_until)
+
+
+@dataclass(frozen=True)
+class PlayOptions:
+    """How to play: the flags of ``skydeck bag play``."""
+
+    rate: float = 1.0
+    loop: bool = False
+    start_offset_s: float = 0.0
+    topics: frozenset[str] | None = None
+    clock: bool = False
+    clock_hz: float = 100.0
+    remap: Mapping[str, str] = field(default_factory=dict)
+    wait_for_subscribers: bool = False
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.rate) and self.rate > 0):
+            raise BagError(f"--rate must be a positive number, got {self.rate}")
+        if not (math.isfinite(self.start_offset_s) and self.start_offset_s >= 0):
+            raise BagError(f"--start-offset must be 0 or more seconds, got {self.start_offset_s}")
+
+
+def check_types(graph_topics: Iterable[Mapping[str, Any]], played: Mapping[str, str]) -> None:
+    """BagError if a topic to publish already has another type in the running system."""
+    for topic in graph_topics:
+        recorded = played.get(topic["name"])
+        if recorded and topic.get("type") and topic["type"] != recorded:
+            raise BagError(
+                f"{topic['name']} is {topic['type']} in the running system but {recorded} in the recording: "
+                "--remap it to another name, or leave it out with --topics"
+            )
+
+
+class Player(Node):
+    """Publishes the messages of ``reader`` again; ``played`` counts them."""
+
+    def __init__(
+        self,
+        reader: BagReader,
+        options: PlayOptions = PlayOptions(),
+        *,
+        settings: NodeSettings | None = None,
+        say: Callable[[str], None] = lambda _: None,
+    ) -> None:
+        summary = reader.summary
+        recorded = {topic.topic: topic for topic in summary.topics}
+        chosen = sorted(recorded) if options.topics is None else sorted(options.topics)
+        unknown = [name for name in chosen if name not in recorded]
+        if unknown:
+            raise BagError(
+                f"{reader.path} has no topic {', '.join(unknown)}; it has: {', '.join(recorded) or 'none'}"
+            )
+        unknown_remaps = [name for name in options.remap if name not in recorded]
+        if unknown_remaps:
+            raise BagError(f"--remap names {', '.join(unknown_remaps)}, which {reader.path} does not have")
+        if options.start_offset_s > summary.duration_s:
+            raise BagError(
+                f"--start-offset {options.start_offset_s:g} s is past the end of {reader.path} ({summary.duration_s:.3f} s)"
+            )
+        for name in chosen:
+            if recorded[name].encoding != MESSAGE_ENCODING:
+                raise BagError(f"{name} is recorded as {recorded[name].encoding!r}: Skydeck plays JSON recordings")
+        super().__init__(f"bag_play_{os.getpid()}", settings=settings)
+        self.reader = reader
+        self.options = options
+        self.played = 0
+        self.lateness_s: list[float] | None = None  # set to a list to collect each message's lateness
+        self._say = say
+        self.topics = {name: options.remap.get(name, name) for name in chosen}
+        self._publishers: dict[str, Publisher[Any]] = {}
+        for name in chosen:
+            msg_type = message_type(recorded[name].type_name)
+            self._publishers[name] = self.create_publisher(
+                msg_type, self.topics[name], _QUEUE_SIZE, latched=recorded[name].latched
+            )
+        self._clock_publisher: Publisher[Time] | None = None
+        if options.clock and CLOCK_TOPIC not in self.topics.values():
+            self._clock_publisher = self.create_publisher(Time, CLOCK_TOPIC, 10)
+        self._unpaused = asyncio.Event()
+        self._unpaused.set()
+        self._toggled = asyncio.Event()
+        self._paused_s = 0.0
+        self._paused_at: float | None = None
+        self._base: tuple[int, float] | None = None  # (log time, monotonic time) of the first played
+        self._position_ns = summary.start_ns
+        self._task: asyncio.Task[None] | None = None
+
+    @property
+    def played_types(self) -> dict[str, str]:
+        """Published name -> recorded type, for :func:`check_types`."""
+        return {
+            self.topics[topic.topic]: topic.type_name
+            for topic in self.reader.summary.topics
+            if topic.topic in self.topics
+        }
+
+    # -- pause --------------------------------------------------------------------------------
+
+    @property
+    def paused(self) -> bool:
+        return not self._unpaused.is_set()
+
+    def pause(self) -> None:
+        if self.paused:
+            return
+        self._paused_at = time.monotonic()
+        self._unpaused.clear()
+        self._toggled.set()
+        self._say(f"[PAUSED]  at {self.position_s:.3f} s of {self.reader.summary.duration_s:.3f} s (space resumes)")
+
+    def resume(self) -> None:
+        if not self.paused:
+            return
+        if self._paused_at is not None:
+            self._paused_s += time.monotonic() - self._paused_at
+            self._paused_at = None
+        self._unpaused.set()
+        self._toggled.set()
+        self._say(f"[RUNNING] from {self.position_s:.3f} s")
+
+    def toggle_pause(self) -> None:
+        self.resume() if self.paused else self.pause()
+
+    @property
+    def position_s(self) -> float:
+        """Where playback is, seconds from the start of the recording."""
+        return (self._position_ns - self.reader.summary.start_ns) / 1e9
+
+    # -- running ------------------------------------------------------------------------------
+
+    async def start(self) -> None:
+        await super().start()
+        self._task = asyncio.get_running_loop().create_task(self._play())
+        if self._clock_publisher is not None:
+            self.create_timer(1.0 / self.options.clock_hz, self._publish_clock, wall_clock=True)
+
+    async def stop(self) -> None:
+        if self._task is not None:
+            self._task.cancel()
+            await asyncio.gather(self._task, return_exceptions=True)
+        await super().stop()
+
+    async def _play(self) -> None:
+        if self.options.wait_for_subscribers:
+            await self._wait_for_subscribers()
+        start_ns = self.reader.summary.start_ns + int(self.options.start_offset_s * 1e9)
+        try:
+            while True:
+                await self._play_once(start_ns)
+                if not self.options.loop:
+                    break
+        finally:
+            self.destroy_node()
+
+    async def _wait_for_subscribers(self) -> None:
+        waiting = [name for name, publisher in self._publishers.items() if publisher.get_subscription_count() == 0]
+        if waiting:
+            self._say(f"waiting for a subscriber on {', '.join(self.topics[name] for name in waiting)}")
+        while any(publisher.get_subscription_count() == 0 for publisher in self._publishers.values()):
+            await asyncio.sleep(0.01)
+
+    async def _play_once(self, start_ns: int) -> None:
+        self._base = None
+        scale = 1e-9 / self.options.rate
+        publishers = self._publishers
+        lateness = self.lateness_s
+        back_to_back = 0
+        for message in self.reader.messages(publishers, start_ns=start_ns):
+            if self._base is None:
+                self._base = (message.log_time_ns, time.monotonic())
+            due_s = self._base[1] + (message.log_time_ns - self._base[0]) * scale
+            if due_s + self._paused_s > time.monotonic() or self.paused:
+                await self._wait_until(due_s)
+                back_to_back = 0
+            else:
+                back_to_back += 1
+                if back_to_back >= _YIELD_EVERY:
+                    back_to_back = 0
+                    await asyncio.sleep(0)
+            publishers[message.topic].publish(message.frame)
+            if lateness is not None:
+                lateness.append(time.monotonic() - due_s - self._paused_s)
+            self._position_ns = message.log_time_ns
+            self.played += 1
+
+    async def _wait_until(self, due_s: float) -> None:
+        """Sleep until ``due_s`` on the playback timeline (which stands still while paused).
+
+        The event loop wakes up to a millisecond late (epoll's timeout is in whole ms), so it
+        is asked to wake ``_FINE_S`` early and the rest is slept precisely, blocking the loop
+        for at most that long: a message is then published within ~0.1 ms of its time.
+        """
+        while True:
+            if self.paused:
+                await self._unpaused.wait()
+            delay_s = due_s + self._paused_s - time.monotonic()
+            if delay_s <= 0:
+                return
+            if delay_s <= _FINE_S:
+                await asyncio.sleep(0)  # the loop gets its turn (sockets, timers, Ctrl-C) first
+                delay_s = due_s + self._paused_s - time.monotonic()
+                if delay_s > 0:
+                    time.sleep(delay_s)
+                return
+            self._toggled.clear()
+            try:
+                async with asyncio.timeout(delay_s - _FINE_S):
+                    await self._toggled.wait()
+            except TimeoutError:
+                pass
+
+    def _publish_clock(self) -> None:
+        if self.paused or self._base is None or self._clock_publisher is None:
+            return
+        elapsed_s = time.monotonic() - self._base[1] - self._paused_s
+        now_ns = self._base[0] + int(elapsed_s * self.options.rate * 1e9)
+        sec, nanosec = divmod(max(now_ns, self._position_ns), 1_000_000_000)
+        self._clock_publisher.publish(Time(sec=sec, nanosec=nanosec))

@@ -1,0 +1,255 @@
+"""The verbs ROS users type beyond list/info/echo/pub, as subprocesses against a real core."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import shutil
+import subprocess
+import sys
+
+import pytest
+import yaml
+
+from services.runtime import Node
+from shared_models.geometry_msgs import Point, PointStamped
+from shared_models.sensor_msgs import LaserScan
+from shared_models.std_msgs import Header, String
+from shared_models.std_srvs import SetBool, SetBoolResponse, Trigger, TriggerResponse
+from tests.conftest import free_port
+from tests.services.cli.test_cli import skydeck
+
+
+class Stamped(Node):
+    """Stamped points at 50 Hz, a scan, a string, and two services of different types."""
+
+    def __init__(self, settings) -> None:
+        super().__init__("stamped", settings=settings)
+        self.points = self.create_publisher(PointStamped, "/stamped", 10)
+        self.scans = self.create_publisher(LaserScan, "/scan", 10)
+        self.text = self.create_publisher(String, "/text", 10)
+        self.create_timer(0.02, self.tick)
+        self.create_service(Trigger, "/stamped/ping", lambda request: TriggerResponse(success=True))
+        self.create_service(SetBool, "/stamped/enable", lambda request: SetBoolResponse(success=True))
+
+    def tick(self) -> None:
+        header = Header(stamp=self.get_clock().now().to_msg(), frame_id="odom")
+        self.points.publish(PointStamped(header=header, point=Point(x=1.5, y=-2.0)))
+        self.scans.publish(LaserScan(header=header, ranges=[1.0, 2.0, 3.0], angle_max=6.2))
+        self.text.publish(String(data="a, b"))
+
+
+async def test_topic_type_and_find(core, start_node) -> None:
+    await start_node(Stamped)
+    assert await skydeck(core.url, "topic", "type", "/stamped") == (0, "geometry_msgs/msg/PointStamped\n", "")
+    status, out, _ = await skydeck(core.url, "topic", "find", "sensor_msgs/msg/LaserScan")
+    assert status == 0 and out.splitlines() == ["/scan"]
+    status, _, err = await skydeck(core.url, "topic", "type", "/nope")
+    assert status == 1 and "unknown topic /nope" in err and err.count("\n") == 1
+    status, _, err = await skydeck(core.url, "topic", "find", "sensor_msgs/msg/LaserScn")
+    assert status == 1 and "did you mean sensor_msgs/msg/LaserScan" in err
+    status, _, err = await skydeck(core.url, "topic", "find", "std_srvs/srv/Trigger")
+    assert status == 1 and "service find" in err
+
+
+async def test_echo_field_csv_no_arr_and_qos_depth(core, start_node) -> None:
+    await start_node(Stamped)
+    status, out, _ = await skydeck(core.url, "topic", "echo", "/stamped", "--field", "point.x", "-n", "2")
+    assert status == 0 and out.splitlines()[-4:] == ["1.5", "---", "1.5", "---"]
+    status, out, _ = await skydeck(core.url, "topic", "echo", "/scan", "--field", "ranges[1]", "--once")
+    assert out.splitlines()[-2:] == ["2.0", "---"]
+    status, out, _ = await skydeck(core.url, "topic", "echo", "/stamped", "--field", "point", "--csv", "--once", "--qos-depth", "5")
+    assert status == 0 and out.splitlines()[-1] == "1.5,-2.0,0.0"
+    status, out, _ = await skydeck(core.url, "topic", "echo", "/text", "--csv", "--once")
+    assert out.splitlines()[-1] == '"a, b"'
+    status, out, _ = await skydeck(core.url, "topic", "echo", "/scan", "--no-arr", "--once")
+    scan = yaml.safe_load(out.split("---")[0].split("\n", 1)[1] if out.startswith("WARNING") else out.split("---")[0])
+    assert scan["ranges"] == "<array, length: 3>" and scan["angle_max"] == pytest.approx(6.2)
+    status, out, _ = await skydeck(core.url, "topic", "echo", "/scan", "--field", "header", "--json", "--once")
+    assert json.loads(out.splitlines()[-1])["frame_id"] == "odom"
+    status, _, err = await skydeck(core.url, "topic", "echo", "/stamped", "--field", "point.w", "--once")
+    assert status == 1 and "the message has no point.w" in err and err.count("\n") == 1
+    status, _, err = await skydeck(core.url, "topic", "echo", "/stamped", "--qos-depth", "0")
+    assert status == 2 and "positive integer" in err
+
+
+async def test_hz_window_bw_and_delay(core, start_node) -> None:
+    await start_node(Stamped)
+    status, out, _ = await skydeck(core.url, "topic", "hz", "/stamped", "--window", "5", "-n", "2")
+    assert status == 0 and out.count("average rate:") == 2 and "window: 5" in out
+    status, out, _ = await skydeck(core.url, "topic", "bw", "/stamped", "-w", "20", "-n", "1")
+    assert status == 0 and "KB/s from 20 messages" in out and "Message size mean:" in out
+    status, out, _ = await skydeck(core.url, "topic", "delay", "/stamped", "-n", "1", "--window", "10")
+    delay = float(next(line for line in out.splitlines() if line.startswith("average delay:")).split(":")[1])
+    assert status == 0 and 0 <= delay < 1.0 and "window: 10" in out  # wall-clock stamps, one machine
+    status, _, err = await skydeck(core.url, "topic", "delay", "/text", "-n", "1")
+    assert status == 1 and "/text has no header.stamp" in err and err.count("\n") == 1
+
+
+async def test_delay_on_sim_time_compares_with_clock(core, start_node) -> None:
+    from shared_models.builtin_interfaces import Time
+
+    class SimStamped(Node):
+        def __init__(self, settings) -> None:
+            super().__init__("sim_stamped", settings=settings)
+            self.points = self.create_publisher(PointStamped, "/sim_stamped", 10)
+            self.clock = self.create_publisher(Time, "/clock", 10)
+            self.create_timer(0.02, self.tick)
+            self.t = 100.0
+
+        def tick(self) -> None:
+            self.t += 0.02
+            self.clock.publish(Time.from_sec(self.t))
+            self.points.publish(PointStamped(header=Header(stamp=Time.from_sec(self.t - 0.5))))
+
+    await start_node(SimStamped)
+    status, out, _ = await skydeck(core.url, "topic", "delay", "/sim_stamped", "--use-sim-time", "-n", "2")
+    delays = [float(line.split(":")[1]) for line in out.splitlines() if line.startswith("average delay:")]
+    assert status == 0 and delays and 0.3 < delays[-1] < 0.7  # half a second of sim time, not 1.7e9 s
+
+
+async def test_service_type_and_find(core, start_node) -> None:
+    await start_node(Stamped)
+    status, out, _ = await skydeck(core.url, "service", "type", "/stamped/enable")
+    assert out == "std_srvs/srv/SetBool\n"
+    status, out, _ = await skydeck(core.url, "service", "find", "std_srvs/srv/Trigger")
+    assert status == 0 and out.splitlines() == ["/stamped/ping"]
+    status, _, err = await skydeck(core.url, "service", "find", "std_msgs/msg/String")
+    assert status == 1 and "topic find" in err
+    status, _, err = await skydeck(core.url, "service", "type", "/stamped/nope")
+    assert status == 1 and "unknown service /stamped/nope" in err
+
+
+async def test_node_ping(core, start_node) -> None:
+    await start_node(Stamped)
+    status, out, _ = await skydeck(core.url, "node", "ping", "stamped", "-c", "2", "--timeout", "2")
+    assert status == 0 and out.count("reply from http://127.0.0.1:") == 2
+    status, _, err = await skydeck(core.url, "node", "ping", "/nobody")
+    assert status == 1 and "unknown node /nobody" in err
+
+
+async def test_node_kill_stops_a_node_no_launch_manages(core) -> None:
+    """A node started on its own (`skydeck run`) is stopped with SIGTERM, as rosnode kill would."""
+    env_url = core.url
+    node = await asyncio.create_subprocess_exec(
+        sys.executable, "-m", "services.cli", "run", "examples/send_message.py", "--core-url", env_url,
+        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+    )
+    try:
+        async with asyncio.timeout(20):
+            while "/send_message_node" not in core.registry.nodes:
+                await asyncio.sleep(0.05)
+        status, out, err = await skydeck(core.url, "node", "kill", "/send_message_node")
+        assert status == 0 and f"(pid {node.pid}) with SIGTERM" in out, err
+        async with asyncio.timeout(10):
+            assert await node.wait() == 0  # a clean stop: spin() handles SIGTERM
+    finally:
+        if node.returncode is None:
+            node.kill()
+            await node.wait()
+    status, _, err = await skydeck(core.url, "node", "kill", "/skydeck_core")
+    assert status == 1 and "part of Skydeck itself" in err
+
+
+async def test_doctor_says_what_is_wrong_and_what_to_do(core) -> None:
+    status, out, _ = await skydeck(core.url, "doctor")
+    assert f"[ok] core at {core.url} answers" in out and "[ok] Python 3." in out
+    assert ("[FAIL]" in out) == (status == 1), out
+    assert "Chromium" in out and "ports" in out and "clock skew" in out
+    url = f"http://127.0.0.1:{free_port()}"
+    status, out, _ = await skydeck(url, "doctor")
+    assert status == 1 and f"[FAIL] core at {url} not reachable" in out and "-> start it with `skydeck core`" in out
+
+
+# -- shell completion -----------------------------------------------------------------------
+
+
+def _bash_complete(core_url: str, line: str) -> list[str]:
+    """Complete ``line`` (the last word partly typed) in a real bash with the script sourced."""
+    script = (
+        "source <(\"$SKYDECK\" completion bash)\n"
+        'read -ra COMP_WORDS <<< "$LINE"\n'
+        '[[ "$LINE" == *" " ]] && COMP_WORDS+=("")\n'
+        "COMP_CWORD=$((${#COMP_WORDS[@]} - 1))\n"
+        'COMP_WORDS[0]="$SKYDECK"\n'
+        "_skydeck\n"
+        'printf "%s\\n" "${COMPREPLY[@]}"\n'
+    )
+    skydeck_bin = shutil.which("skydeck", path=str(__import__("pathlib").Path(sys.executable).parent))
+    result = subprocess.run(
+        ["bash", "-c", script],
+        env={"PATH": "/usr/bin:/bin", "LINE": line, "SKYDECK": skydeck_bin or "skydeck", "SKYDECK_CORE_URL": core_url},
+        capture_output=True, text=True, timeout=30, cwd="tests/services/bag",
+    )
+    assert result.returncode == 0, result.stderr
+    return [word for word in result.stdout.splitlines() if word]
+
+
+async def test_bash_completes_verbs_flags_live_names_types_and_files(core, start_node) -> None:
+    await start_node(Stamped)
+
+    def complete(line: str) -> list[str]:
+        return _bash_complete(core.url, line)
+
+    assert await asyncio.to_thread(complete, "skydeck to") == ["topic"]
+    assert "echo" in await asyncio.to_thread(complete, "skydeck topic ")
+    assert await asyncio.to_thread(complete, "skydeck topic echo --f") == ["--field"]
+    assert await asyncio.to_thread(complete, "skydeck topic echo /st") == ["/stamped"]
+    assert await asyncio.to_thread(complete, "skydeck service call /stamped/p") == ["/stamped/ping"]
+    assert await asyncio.to_thread(complete, "skydeck node info /sta") == ["/stamped"]
+    assert await asyncio.to_thread(complete, "skydeck interface show sensor_msgs/msg/LaserS") == ["sensor_msgs/msg/LaserScan"]
+    assert "std_srvs/srv/Trigger" in await asyncio.to_thread(complete, "skydeck service find std_srvs/")
+    assert await asyncio.to_thread(complete, "skydeck bag info test_f") == ["test_files.py"]  # a path
+    assert await asyncio.to_thread(complete, "skydeck bag record -o test_r") == ["test_record_play.py"]
+    assert await asyncio.to_thread(complete, "skydeck run con") == ["control"]
+
+
+@pytest.mark.skipif(shutil.which("zsh") is None, reason="zsh is not installed")
+def test_the_zsh_script_is_valid_zsh_and_names_the_completer() -> None:
+    script = subprocess.run(
+        [sys.executable, "-m", "services.cli", "completion", "zsh"], capture_output=True, text=True, timeout=30, check=True
+    ).stdout
+    assert "compdef _skydeck skydeck" in script
+    checked = subprocess.run(["zsh", "-n"], input=script, capture_output=True, text=True, timeout=30)
+    assert checked.returncode == 0, checked.stderr
+    # Loaded in a real zsh (with compinit), the completer function is defined.
+    loaded = subprocess.run(
+        ["zsh", "-f", "-c", 'autoload -Uz compinit && compinit -u; eval "$SCRIPT"; whence -w _skydeck'],
+        env={"SCRIPT": script, "PATH": "/usr/bin:/bin", "HOME": "/tmp"},
+        capture_output=True, text=True, timeout=30,
+    )
+    assert "_skydeck: function" in loaded.stdout, loaded.stderr
+
+
+async def test_topic_list_verbose_counts_publishers_and_subscribers(core, start_node) -> None:
+    await start_node(Stamped)
+    status, out, _ = await skydeck(core.url, "topic", "list", "--verbose")
+    assert status == 0 and "/stamped 1 publisher(s), 0 subscriber(s)" in out.splitlines()
+
+
+async def test_server_flags_of_core_and_run(tmp_path) -> None:
+    """--host, --port, --advertise-url and --log-level reach the core and a node."""
+    from services.launch.background import BackgroundProcess
+    from tests.conftest import free_port_block
+
+    base = free_port_block(2)
+    core_url, node_url = f"http://127.0.0.1:{base}", f"http://localhost:{base + 1}"
+    env = {**__import__("os").environ, "SKYDECK_CORE_URL": core_url, "PYTHONUNBUFFERED": "1"}
+    core = BackgroundProcess(
+        [sys.executable, "-m", "services.cli", "core", "--host", "127.0.0.1", "--port", str(base),
+         "--advertise-url", core_url, "--log-level", "warning"], name="core", env=env,
+    )  # fmt: skip
+    node = None
+    try:
+        await asyncio.to_thread(core.wait_healthy, core_url + "/health", 30)
+        node = BackgroundProcess(
+            [sys.executable, "-m", "services.cli", "run", "perception", "--host", "127.0.0.1", "--port", str(base + 1),
+             "--advertise-url", node_url, "--log-level", "debug"], name="perception", env=env,
+        )  # fmt: skip
+        await node.await_line("registered with core", 30)  # an INFO line: shown at --log-level debug
+        status, out, _ = await skydeck(core_url, "node", "info", "/perception")
+        assert status == 0 and f"URI: {node_url}" in out  # the advertised URL, not the bound one
+    finally:
+        if node is not None:
+            node.stop()
+        core.stop()
