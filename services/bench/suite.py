@@ -322,7 +322,7 @@ class Suite:
                          bare, target=">= 20x real time and >= 0.6x bare",
                          samples=[r["rtf_subscribed"] for r in node],
                          detail={"with": "a subscriber node on /drone/pose",
-                                 "pose_messages_per_s": median_of(node, "pose_rate")})  # fmt: skip
+                                 "pose_messages_per_s": median_of(node, "stream_rate")})  # fmt: skip
             rtf.met = rtf.ratio is not None and rtf.ratio >= 0.6 and (rtf.value or 0) >= 20
             alone = Result("sim_rtf_no_subscriber", median_of(node, "rtf_alone"), "x real time",
                            "bare PyBullet loop, same scene", bare, target="-",
