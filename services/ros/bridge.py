@@ -181,10 +181,20 @@ class Bridge:
             loop, thread = self._loop, self._thread
             self._loop = self._thread = None
         if loop is not None and thread is not None and threading.current_thread() is not thread:
+            with contextlib.suppress(TimeoutError, concurrent.futures.TimeoutError, RuntimeError):
+                asyncio.run_coroutine_threadsafe(_cancel_the_rest(), loop).result(_STOP_TIMEOUT_S)
             loop.call_soon_threadsafe(loop.stop)
             thread.join(_STOP_TIMEOUT_S)
             if not thread.is_alive():
                 loop.close()
+
+
+async def _cancel_the_rest() -> None:
+    """End the tasks the stopped nodes left (keepalives of closing sockets) before the loop stops."""
+    tasks = [t for t in asyncio.all_tasks() if t is not asyncio.current_task()]
+    for task in tasks:
+        task.cancel()
+    await asyncio.gather(*tasks, return_exceptions=True)
 
 
 bridge = Bridge()

@@ -176,6 +176,11 @@ class Node(ParametersMixin):
         """The node's logger; every line also goes to ``/rosout``."""
         return self._logger
 
+    @property
+    def rosout_publisher(self) -> Publisher[Log]:
+        """The node's publisher of ``/rosout`` (a façade's logger publishes through it)."""
+        return self._rosout
+
     def get_clock(self) -> Clock:
         """The node's clock: sim time when ``use_sim_time`` is set, else wall time."""
         return self._clock

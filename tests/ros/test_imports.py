@@ -12,7 +12,11 @@ from pathlib import Path
 import pytest
 
 from services.ros import disable_ros_imports, enable_ros_imports
-from services.ros.errors import NotProvidedImportError, UnknownMessageError, UnknownMessagePackageError
+from services.ros.errors import (
+    NotProvidedImportError,
+    UnknownMessageError,
+    UnknownMessagePackageError,
+)
 from shared_models import geometry_msgs, rcl_interfaces, ros_workshop, sensor_msgs, std_srvs
 
 REPO = Path(__file__).resolve().parents[2]
