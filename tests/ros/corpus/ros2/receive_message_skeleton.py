@@ -1,7 +1,7 @@
 """ Investigate receiving a message using a callback function """
 import rclpy
 from rclpy.node import Node
-
+from geometry_msgs.msg import PointStamped
 
 class ReceiveMessageNode(Node):
     """This is a message subscription node, which inherits from the rclpy Node class."""

@@ -2,7 +2,6 @@
 import rclpy
 from rclpy.node import Node
 
-
 class SendMessageNode(Node):
     """This is a message publishing node, which inherits from the rclpy Node class."""
     def __init__(self):
