@@ -83,8 +83,7 @@ class Executor:
             if node not in self._nodes:
                 return
             self._nodes.remove(node)
-        node._rclpy_set_executor(None)
-        self.wake()
+        node._rclpy_set_executor(None)  # a spin of nothing left ends within _IDLE_WAKE_S
 
     def get_nodes(self) -> list[Node]:
         with self._nodes_lock:
