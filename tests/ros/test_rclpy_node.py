@@ -191,7 +191,10 @@ def test_parameters_from_overrides_api_and_the_graph_reach_the_on_set_callback(r
 
 
 def test_multithreaded_executor_runs_reentrant_callbacks_together_and_exclusive_ones_apart(rclpy) -> None:  # type: ignore[no-untyped-def]
-    from services.ros.rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
+    from services.ros.rclpy.callback_groups import (
+        MutuallyExclusiveCallbackGroup,
+        ReentrantCallbackGroup,
+    )
     from services.ros.rclpy.executors import MultiThreadedExecutor
 
     node = rclpy.create_node("groups")
