@@ -182,6 +182,7 @@ def test_parameters_from_overrides_api_and_the_graph_reach_the_on_set_callback(r
     node.add_on_set_parameters_callback(check)
     results = node.set_parameters([Parameter("speed", Parameter.Type.DOUBLE, 0.9), Parameter("speed", value=0.25)])
     assert [r.successful for r in results] == [False, True] and results[0].reason == "at most 0.3"
+    _until(lambda: "/tuned" in _node_names(core), what="/tuned to register")  # registration is asynchronous
     body = json.dumps({"parameters": [{"name": "speed", "value": {"type": 3, "double_value": 0.3}}]}).encode()
     request = urllib.request.Request(core.url + "/tuned/set_parameters", data=body, method="POST",
                                      headers={"Content-Type": "application/json"})  # fmt: skip
