@@ -14,7 +14,14 @@ import pytest
 
 from sim_server.robot.limits import ROBOT_RADIUS_M, ROOM_HALF_SIZE_M
 from tests.ros.conftest import CORPUS, no_skydeck_frames, ros_file
-from tests.sim_server.robot.room import Recorder, call, stamp_s, start_room, truth, wait_for
+from tests.sim_server.robot.room import (
+    Recorder,
+    reset_room,
+    stamp_s,
+    start_room,
+    truth,
+    wait_for,
+)
 from tests.web_ui.system import REPO, System
 
 pytestmark = [pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(240)]
@@ -32,9 +39,7 @@ def room() -> Iterator[System]:
 @pytest.fixture
 def fresh(room: System) -> System:
     """The room with its robot back at the start, standing still."""
-    assert call(room, "/simulator/reset")["success"] is True
-    wait_for(room, "/simulator/robots", lambda m: math.hypot(*_xy(m["poses"][0])) < 1e-3)
-    return room
+    return reset_room(room)
 
 
 def _xy(pose: dict) -> tuple[float, float]:
@@ -107,6 +112,7 @@ def test_wall_stop_stops_at_the_asked_distance(fresh: System, distance: float) -
         _sim_seconds_later(fresh, 1.0)
         x, y, _ = truth(fresh)
     ahead = ROOM_HALF_SIZE_M - x  # from the laser (at the robot's centre) to the +x wall
+    print(f"wall_stop asked {distance} m, stopped {ahead:.3f} m from the wall")
     assert distance - 0.08 <= ahead <= distance + 0.02, ahead
     assert abs(y) < 0.05
 
@@ -133,6 +139,7 @@ def test_timed_square_with_duration_arithmetic_closes(fresh: System) -> None:
     track = [_xy(m["poses"][0]) for m in robots.messages]
     for corner in ((1.0, 0.0), (1.0, 1.0), (0.0, 1.0)):  # it went round a 1 m square
         assert min(math.dist(p, corner) for p in track) < 0.25, corner
+    print(f"timed_square closed within {math.hypot(x, y):.3f} m")
     assert math.hypot(x, y) < 0.3, (x, y)  # and closed it, by the clock alone
 
 

@@ -10,12 +10,41 @@ from typing import Any
 
 from shared_models.builtin_interfaces import Duration as DurationMsg
 
-__all__ = ["Duration", "S_TO_NS"]
+__all__ = ["Duration", "NanosecondsOrder", "S_TO_NS"]
 
 S_TO_NS = 1_000_000_000
 
 
-class Duration:
+class NanosecondsOrder:
+    """Comparisons by ``_nanoseconds`` with what ``_other`` accepts (it raises TypeError for
+    the rest, as rclpy's Time and Duration do, ``==`` included)."""
+
+    __slots__ = ()
+    _nanoseconds: int
+
+    def _other(self, other: object) -> int:
+        raise NotImplementedError
+
+    def __eq__(self, other: object) -> bool:
+        return self._nanoseconds == self._other(other)
+
+    def __ne__(self, other: object) -> bool:
+        return self._nanoseconds != self._other(other)
+
+    def __lt__(self, other: object) -> bool:
+        return self._nanoseconds < self._other(other)
+
+    def __le__(self, other: object) -> bool:
+        return self._nanoseconds <= self._other(other)
+
+    def __gt__(self, other: object) -> bool:
+        return self._nanoseconds > self._other(other)
+
+    def __ge__(self, other: object) -> bool:
+        return self._nanoseconds >= self._other(other)
+
+
+class Duration(NanosecondsOrder):
     """A span of time (negative allowed); compares only with another Duration, as rclpy's."""
 
     __slots__ = ("_nanoseconds",)
@@ -50,23 +79,6 @@ class Duration:
             raise TypeError(f"Can't compare duration with object of type: {type(other)}")
         return other._nanoseconds
 
-    def __eq__(self, other: object) -> bool:
-        return self._nanoseconds == self._other(other)
-
-    def __ne__(self, other: object) -> bool:
-        return self._nanoseconds != self._other(other)
-
-    def __lt__(self, other: object) -> bool:
-        return self._nanoseconds < self._other(other)
-
-    def __le__(self, other: object) -> bool:
-        return self._nanoseconds <= self._other(other)
-
-    def __gt__(self, other: object) -> bool:
-        return self._nanoseconds > self._other(other)
-
-    def __ge__(self, other: object) -> bool:
-        return self._nanoseconds >= self._other(other)
 
     def __hash__(self) -> int:
         return hash(self._nanoseconds)

@@ -11,13 +11,13 @@ from __future__ import annotations
 from typing import Any
 
 from services.ros.rclpy.clock_type import ClockType
-from services.ros.rclpy.duration import S_TO_NS, Duration
+from services.ros.rclpy.duration import S_TO_NS, Duration, NanosecondsOrder
 from shared_models.builtin_interfaces import Time as TimeMsg
 
 __all__ = ["Time"]
 
 
-class Time:
+class Time(NanosecondsOrder):
     """A time on a clock of ``clock_type``; times of different clock types do not mix (TypeError)."""
 
     __slots__ = ("_clock_type", "_nanoseconds")
@@ -84,23 +84,6 @@ class Time:
             raise TypeError("Can't compare times with different clock types")
         return other._nanoseconds
 
-    def __eq__(self, other: object) -> bool:
-        return self._nanoseconds == self._other(other)
-
-    def __ne__(self, other: object) -> bool:
-        return self._nanoseconds != self._other(other)
-
-    def __lt__(self, other: object) -> bool:
-        return self._nanoseconds < self._other(other)
-
-    def __le__(self, other: object) -> bool:
-        return self._nanoseconds <= self._other(other)
-
-    def __gt__(self, other: object) -> bool:
-        return self._nanoseconds > self._other(other)
-
-    def __ge__(self, other: object) -> bool:
-        return self._nanoseconds >= self._other(other)
 
     def __hash__(self) -> int:
         return hash((self._nanoseconds, self._clock_type))
