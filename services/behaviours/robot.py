@@ -100,8 +100,9 @@ class RobotBehaviour(Node):
         self.command = (0.0, 0.0)
 
     def topic(self, name: str) -> str:
-        """``name`` in this robot's namespace: ``cmd_vel`` -> ``/robot1/cmd_vel`` (or ``/cmd_vel``)."""
-        return resolve_name(name, self.namespace)
+        """``name`` in this robot's namespace: ``cmd_vel`` -> ``/robot1/cmd_vel``; without
+        ``--namespace``, ``name`` as is, in the node's namespace (``--ros-args -r __ns:=/robot1``)."""
+        return name if self.namespace == "/" else resolve_name(name, self.namespace)
 
     def control(self) -> tuple[float, float] | None:
         """The command to send now: (forward m/s, counter-clockwise rad/s), or None for none."""

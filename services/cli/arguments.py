@@ -33,11 +33,12 @@ def positive_float(text: str) -> float:
 
 
 def node_name(text: str) -> str:
-    """A node name as the user typed it, resolved ("sim" -> "/sim"), by the rule nodes are named by."""
-    from shared_models import InvalidNameError, resolve_node_name
+    """A node's full name as the user typed it, resolved ("sim" -> "/sim"); a node in a
+    namespace (``-r __ns:=/robot1``) is named with it: ``/robot1/estop``."""
+    from shared_models import InvalidNameError, resolve_name, resolve_node_name
 
     try:
-        return resolve_node_name(text)
+        return resolve_name(text) if "/" in text.strip("/") else resolve_node_name(text)
     except InvalidNameError as error:
         raise CliError(str(error)) from None
 

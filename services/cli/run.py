@@ -88,11 +88,19 @@ def _core(args: argparse.Namespace) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
-    from services.runtime.ros_args import parse_ros_args, set_process_ros_arguments, split_ros_args
+    from services.runtime.ros_args import (
+        parse_ros1_args,
+        parse_ros_args,
+        set_process_ros_arguments,
+        split_ros_args,
+    )
 
     _apply_flags(args)
     node_argv, ros_argv = split_ros_args(list(args.extra))
-    set_process_ros_arguments(parse_ros_args(ros_argv))  # every node of this process reads them
+    arguments = parse_ros_args(ros_argv)
+    if args.node not in BUILTIN_NODES:  # a ROS 1 program's `chatter:=/news _rate:=5` too
+        arguments = parse_ros1_args(node_argv)[1] + arguments
+    set_process_ros_arguments(arguments)  # every node of this process reads them
     if args.node in BUILTIN_NODES:
         module = importlib.import_module(BUILTIN_NODES[args.node])
         return int(module.main(node_argv) or 0)
@@ -103,7 +111,26 @@ def _run(args: argparse.Namespace) -> int:
         )
     if not path.is_file():
         raise CliError(f"no such node file: {path}")
-    sys.argv = [str(path), *args.extra]  # with --ros-args, as ROS hands them to the program
+    return _run_file(path, list(args.extra))
+
+
+def _run_file(path: Path, argv: list[str]) -> int:
+    """Run a node file as ``python3 FILE`` would, with ROS's module names importable
+    (``import rclpy``, ``from geometry_msgs.msg import Twist``: docs/ros.md)."""
+    from services.ros import enable_ros_imports
+
+    enable_ros_imports()
+    sys.argv = [str(path), *argv]  # with --ros-args, as ROS hands them to the program
     sys.path.insert(0, str(path.resolve().parent))
-    runpy.run_path(str(path), run_name="__main__")
+    try:
+        runpy.run_path(str(path), run_name="__main__")
+    finally:
+        _stop_ros_nodes()
     return 0
+
+
+def _stop_ros_nodes() -> None:
+    """The nodes a ROS program left running leave the graph when it ends (or is interrupted)."""
+    bridge_module = sys.modules.get("services.ros.bridge")
+    if bridge_module is not None:
+        bridge_module.bridge.shutdown()

@@ -63,11 +63,24 @@ class NodeLogger:
         self._log(Log.FATAL, msg, args)
 
     def _log(self, level: int, msg: str, args: tuple[Any, ...]) -> None:
+        self.log(level, msg, *args, caller_depth=3)
+
+    def is_enabled_for(self, level: int) -> bool:
+        """Whether a line of ``level`` (``Log.INFO``...) would be logged."""
+        return _LEVELS[level] >= self._min_python_level
+
+    def set_level(self, level: int) -> None:
+        """Log lines of ``level`` (``Log.INFO``...) and above from now on."""
+        self._min_python_level = _LEVELS[level]
+
+    def log(self, level: int, msg: str, *args: Any, caller_depth: int = 1) -> None:
+        """Log ``msg`` at ``level`` (``Log.INFO``...); the /rosout line names the code
+        ``caller_depth`` frames up as where it was logged (1: whoever called this)."""
         python_level = _LEVELS[level]
         if python_level < self._min_python_level:
             return
         text = str(msg) % args if args else str(msg)
-        caller = sys._getframe(2)
+        caller = sys._getframe(caller_depth)
         self._logger.log(python_level, "%s", text)
         self._publish(
             Log(

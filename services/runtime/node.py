@@ -24,14 +24,21 @@ from services.runtime.parameter_service import PARAMETER_EVENTS, parameter_servi
 from services.runtime.parameters import NodeParameters
 from services.runtime.participant import Participant
 from services.runtime.publisher import Publisher
-from services.runtime.ros_args import parse_ros_args, process_ros_arguments
+from services.runtime.ros_args import (
+    ROS_ARGS,
+    NameResolver,
+    RosArguments,
+    parse_ros_args,
+    process_ros_arguments,
+    split_ros_args,
+)
 from services.runtime.server import AppServer
 from services.runtime.service import Service
 from services.runtime.session import CoreSession, RegistrationRejected
 from services.runtime.settings import NodeSettings, process_settings, reachable_host
 from services.runtime.subscription import RawSubscription, Subscription
 from services.runtime.timer import Timer
-from shared_models import Message, ServiceType, resolve_name, resolve_node_name
+from shared_models import Message, ServiceType, resolve_node_name
 from shared_models.builtin_interfaces import Time
 from shared_models.rcl_interfaces import Log, ParameterDescriptor, ParameterEvent
 
@@ -59,13 +66,16 @@ class Node(ParametersMixin):
 
     Parameters (:mod:`services.runtime.node_parameters`) take their overrides from this
     process's ``--ros-args`` (unless ``use_global_arguments=False``), then ``cli_args``, then
-    ``parameter_overrides``; every node serves them as ROS 2's parameter services.
+    ``parameter_overrides``; every node serves them as ROS 2's parameter services. The same
+    arguments' remap rules (``-r scan:=/robot1/scan``, ``-r __ns:=/robot1``, ``-r __node:=x``)
+    apply to every name the node resolves (:class:`~services.runtime.ros_args.NameResolver`).
     """
 
     def __init__(
         self,
         node_name: str,
         *,
+        namespace: str | None = None,
         settings: NodeSettings | None = None,
         cli_args: list[str] | None = None,
         use_global_arguments: bool = True,
@@ -75,7 +85,17 @@ class Node(ParametersMixin):
         start_parameter_services: bool = True,
     ) -> None:
         self.settings = settings or process_settings(NodeSettings)
-        self._name = resolve_node_name(node_name)
+        arguments = process_ros_arguments() if use_global_arguments else RosArguments()
+        if cli_args:  # rclpy's form (["--ros-args", "-r", ...]) or the ROS arguments alone
+            ros_part = split_ros_args(cli_args)[1] if ROS_ARGS in cli_args else cli_args
+            arguments = arguments + parse_ros_args(ros_part)
+        program_name = resolve_node_name(node_name).lstrip("/")
+        self._names = NameResolver(
+            arguments.namespace_for(program_name) or namespace or "/",
+            arguments.node_name_for(program_name),
+            arguments.remaps_for(program_name),
+        )
+        self._name = self._names.full_node_name
         self._clock = Clock(use_sim_time=self.settings.use_sim_time)
         self._app = NodeApp(
             self._name,
@@ -104,10 +124,7 @@ class Node(ParametersMixin):
         self._logger = NodeLogger(self._name, self._stamp, self._rosout.publish, level=self.settings.log_level)
         self._clock_subscription: Subscription | RawSubscription | None = None
         self._parameter_events = self.create_publisher(ParameterEvent, PARAMETER_EVENTS, 1000)
-        arguments = process_ros_arguments() if use_global_arguments else None
-        if cli_args:
-            arguments = (arguments + parse_ros_args(cli_args)) if arguments else parse_ros_args(cli_args)
-        overrides: dict[str, Any] = arguments.overrides_for(self._name) if arguments else {}
+        overrides: dict[str, Any] = arguments.overrides_for(self._name)
         overrides.update({p.name: p for p in parameter_overrides or ()})
         self._parameters = NodeParameters(
             self._name,
@@ -132,8 +149,19 @@ class Node(ParametersMixin):
     # -- identity -----------------------------------------------------------------------------
 
     def get_name(self) -> str:
-        """The node's name, with its leading slash (``/send_message_node``)."""
+        """The node's full name, with its leading slash and namespace (``/send_message_node``)."""
         return self._name
+
+    def get_namespace(self) -> str:
+        """The node's namespace (``/`` for none; ``-r __ns:=/robot1`` sets it)."""
+        return self._names.namespace
+
+    def resolve_topic_name(self, topic: str) -> str:
+        """The graph's name for ``topic`` as this node uses it: expanded in its namespace
+        (``~/x`` under its own name) and remapped."""
+        return self._names.resolve(topic)
+
+    resolve_service_name = resolve_topic_name
 
     @property
     def pid(self) -> int:
@@ -147,6 +175,11 @@ class Node(ParametersMixin):
     def get_logger(self) -> NodeLogger:
         """The node's logger; every line also goes to ``/rosout``."""
         return self._logger
+
+    @property
+    def rosout_publisher(self) -> Publisher[Log]:
+        """The node's publisher of ``/rosout`` (a façade's logger publishes through it)."""
+        return self._rosout
 
     def get_clock(self) -> Clock:
         """The node's clock: sim time when ``use_sim_time`` is set, else wall time."""
@@ -180,7 +213,7 @@ class Node(ParametersMixin):
         ``latched=True`` sends the latest message to every new subscriber at once (ROS 1's latch).
         """
         self._check_alive()
-        endpoint = self._participant.endpoint(msg_type, topic)
+        endpoint = self._participant.endpoint(msg_type, self._names.resolve(topic))
         endpoint.publishing = True
         endpoint.latched = endpoint.latched or latched
         publisher = Publisher(endpoint, msg_type, _depth(qos_profile))
@@ -202,7 +235,7 @@ class Node(ParametersMixin):
         unparsed; it runs where the frame arrives, so it must be quick (a recorder's write).
         """
         self._check_alive()
-        endpoint = self._participant.endpoint(msg_type, topic)
+        endpoint = self._participant.endpoint(msg_type, self._names.resolve(topic))
         if raw:
             tap = RawSubscription(endpoint.name, msg_type, callback, _depth(qos_profile))  # type: ignore[arg-type]
             endpoint.taps.add(tap)
@@ -223,7 +256,7 @@ class Node(ParametersMixin):
         self._check_alive()
         if not (isinstance(srv_type, type) and issubclass(srv_type, ServiceType)):
             raise TypeError(f"create_service needs a service type such as Trigger, got {srv_type!r}")
-        service = Service(srv_type, resolve_name(srv_name), callback)
+        service = Service(srv_type, self._names.resolve(srv_name), callback)
         self._participant.add_service(service)
         return service
 
@@ -232,7 +265,7 @@ class Node(ParametersMixin):
         self._check_alive()
         return Client(
             srv_type,
-            resolve_name(srv_name),
+            self._names.resolve(srv_name),
             http=lambda: self.http,
             core_url=self.settings.core_url,
             default_timeout_s=self.settings.service_timeout_s,

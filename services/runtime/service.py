@@ -41,6 +41,8 @@ class Service:
                 result = self.handler(request)
             if inspect.isawaitable(result):
                 result = await result
+        except ServiceHandlerError:
+            raise  # already reported where it happened (a façade prints the user's traceback)
         except Exception as error:
             logger.exception("handler of %s raised", self.name)
             raise ServiceHandlerError(f"handler of {self.name} raised {type(error).__name__}: {error}") from error

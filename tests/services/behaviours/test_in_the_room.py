@@ -16,8 +16,8 @@ from sim_server.robot.limits import ROBOT_RADIUS_M, ROOM_HALF_SIZE_M
 from tests.sim_server.robot.room import (
     Recorder,
     behaviour,
-    call,
     latest,
+    reset_room,
     stamp_s,
     start_room,
     truth,
@@ -39,9 +39,7 @@ def room() -> Iterator[System]:
 @pytest.fixture
 def fresh(room: System) -> System:
     """The room with its robot back at the start and the person at the start of the walk."""
-    assert call(room, "/simulator/reset")["success"] is True
-    wait_for(room, "/simulator/robots", lambda m: math.hypot(*_xy(m["poses"][0])) < 1e-3)
-    return room
+    return reset_room(room)
 
 
 def _xy(pose: dict) -> tuple[float, float]:

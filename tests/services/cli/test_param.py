@@ -128,7 +128,7 @@ async def test_ros_args_override_the_defaults(core, tmp_path) -> None:
         (["-p", "speed:=fast"], "/tuned: parameter 'speed' is of type double; got string 'fast'"),
         (["-p", "speed:=5.0"], "/tuned: parameter 'speed' = 5.0 is outside its range"),
         (["-p", "frozen:=[1, a]"], "not a parameter value"),
-        (["-r", "scan:=/robot1/scan"], "-r is not supported by Skydeck yet"),
+        (["-r", "scan:=/robot 1/scan"], "-r scan:=/robot 1/scan: invalid name"),
     ],
 )
 async def test_bad_ros_args_stop_the_node_with_one_line(core, args, message) -> None:

@@ -38,6 +38,14 @@ def start_room(*sim_args: str) -> System:
     return system
 
 
+def reset_room(system: System) -> System:
+    """Reset the world and wait until robot 1 stands at the start again (the caller's ``fresh``)."""
+    if call(system, "/simulator/reset")["success"] is not True:
+        raise AssertionError("/simulator/reset refused")
+    wait_for(system, "/simulator/robots", lambda m: math.hypot(m["poses"][0]["position"]["x"], m["poses"][0]["position"]["y"]) < 1e-3)
+    return system
+
+
 def latest(system: System, topic: str) -> dict[str, Any] | None:
     """GET the topic's latest message through the core (None before the first); also any
     other JSON the core serves (``/api/graph``)."""

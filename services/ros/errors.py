@@ -1,0 +1,52 @@
+"""What the ROS façades raise when a program asks for something Skydeck does not have.
+
+    SkydeckError
+    └── RosFacadeError
+        ├── UnknownMessagePackageError (ImportError)   `import foo_msgs.msg`: no such message package
+        ├── UnknownMessageError (ImportError)          `from std_msgs.msg import Foo`: no such type
+        └── NotProvidedError (NotImplementedError)     a ROS API the façades do not provide
+            └── NotProvidedImportError (ImportError)   ... met at an import (`import rclpy.action`)
+
+Each is printed by ``skydeck run`` as one line (``skydeck: error: ...``), never a traceback into
+Skydeck's code; each also is the built-in class a ROS program would catch.
+"""
+
+from __future__ import annotations
+
+from shared_models.errors import SkydeckError
+
+__all__ = [
+    "NotProvidedError",
+    "NotProvidedImportError",
+    "RosFacadeError",
+    "UnknownMessageError",
+    "UnknownMessagePackageError",
+    "not_provided",
+]
+
+DOCS = "docs/ros.md"
+
+
+class RosFacadeError(SkydeckError):
+    """A ROS program asked the façades for something Skydeck does not have."""
+
+
+class UnknownMessagePackageError(RosFacadeError, ImportError):
+    """An import of a message package Skydeck does not know (``import foo_msgs.msg``)."""
+
+
+class UnknownMessageError(RosFacadeError, ImportError):
+    """An import of a type a known message package does not have (``from std_msgs.msg import Foo``)."""
+
+
+class NotProvidedError(RosFacadeError, NotImplementedError):
+    """A ROS API the façades do not provide (yet); the message names it."""
+
+
+class NotProvidedImportError(NotProvidedError, ImportError):
+    """A ROS module the façades do not provide, met at an import (``import rclpy.action``)."""
+
+
+def not_provided(what: str) -> str:
+    """The one line that says ``what`` is not provided."""
+    return f"{what} is a ROS API Skydeck does not provide (yet); what it provides is in {DOCS}"

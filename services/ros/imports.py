@@ -1,0 +1,203 @@
+"""The import finder behind :func:`services.ros.enable_ros_imports`: ROS's module names, inside
+processes that ``skydeck run`` starts.
+
+    rclpy, rclpy.node, ...     -> services.ros.rclpy, services.ros.rclpy.node, ... (the same modules)
+    rospy                      -> services.ros.rospy
+    geometry_msgs.msg          -> a view of shared_models.geometry_msgs: its geometry_msgs/msg/* types
+    std_srvs.srv               -> its std_srvs/srv/* types, with ROS 1's TriggerRequest/TriggerResponse
+                                  and ROS 2's Trigger_Request/Trigger_Response spellings
+
+One type system: a view's attributes ARE the ``shared_models`` classes. The finder sits first on
+``sys.meta_path`` for these names only (inside a Skydeck process Skydeck is the ROS); for any
+other name it lets Python's own finders look first, and only when none finds a name that looks
+like a ROS package (``foo_msgs``, ``tf2_ros``...) does it answer with one line that says so.
+Nothing here is installed in site-packages, so a real ROS in the user's own Python is untouched.
+"""
+
+from __future__ import annotations
+
+import dis
+import importlib
+import importlib.abc
+import importlib.machinery
+import importlib.util
+import sys
+import types
+from collections.abc import Sequence
+from typing import Any
+
+from services.ros.errors import (
+    NotProvidedImportError,
+    UnknownMessageError,
+    UnknownMessagePackageError,
+    not_provided,
+)
+from shared_models._message import Message, ServiceType
+from shared_models.catalogue import MESSAGE_PACKAGES
+
+__all__ = ["FACADES", "RosImportFinder", "message_view"]
+
+# A ROS client library's name -> the façade package that imitates it.
+FACADES = {"rclpy": "services.ros.rclpy", "rospy": "services.ros.rospy"}
+_KINDS = ("msg", "srv")
+# ROS Python packages a course meets that are not message packages and that Skydeck lacks.
+_NOT_PROVIDED = frozenset(
+    {
+        "actionlib",
+        "ament_index_python",
+        "cv_bridge",
+        "image_geometry",
+        "image_transport",
+        "laser_geometry",
+        "launch",
+        "launch_ros",
+        "message_filters",
+        "rclpy_message_converter",
+        "rosbag",
+        "rosbag2_py",
+        "roslaunch",
+        "roslib",
+        "rospkg",
+        "rosidl_runtime_py",
+        "sensor_msgs_py",
+        "tf",
+        "tf2_geometry_msgs",
+        "tf2_ros",
+        "tf_transformations",
+    }
+)
+_PACKAGE_SUFFIXES = ("_msgs", "_srvs", "_interfaces", "_msg", "_srv", "_action")
+
+
+def _known() -> str:
+    return ", ".join(MESSAGE_PACKAGES)
+
+
+class _AliasLoader(importlib.abc.Loader):
+    """Loads a ROS name as the façade module it stands for: the same module object, which keeps
+    its own ``__spec__`` (Python sets the alias's spec on it while loading; it is put back)."""
+
+    def __init__(self, target: str) -> None:
+        self.target = target
+        self._own_spec: importlib.machinery.ModuleSpec | None = None
+
+    def create_module(self, spec: importlib.machinery.ModuleSpec) -> types.ModuleType:
+        module = importlib.import_module(self.target)
+        self._own_spec = module.__spec__
+        return module
+
+    def exec_module(self, module: types.ModuleType) -> None:
+        module.__spec__ = self._own_spec
+
+
+class _ViewLoader(importlib.abc.Loader):
+    """Loads a message package (an empty package) or one of its ``msg``/``srv`` views."""
+
+    def __init__(self, package: str, kind: str | None) -> None:
+        self.package = package
+        self.kind = kind
+
+    def create_module(self, spec: importlib.machinery.ModuleSpec) -> types.ModuleType:
+        if self.kind is None:
+            module = types.ModuleType(spec.name, f"The ROS package {self.package}: its .msg and .srv types.")
+            module.__path__ = []
+            return module
+        return message_view(self.package, self.kind)
+
+    def exec_module(self, module: types.ModuleType) -> None:
+        pass
+
+
+class _MessageView(types.ModuleType):
+    """``X.msg`` or ``X.srv``: the package's types; an unknown capitalised name is one clear line."""
+
+    _skydeck_package: str
+
+    def __getattr__(self, name: str) -> Any:
+        if not name[:1].isupper():
+            raise AttributeError(f"module {self.__name__!r} has no attribute {name!r}")
+        known = ", ".join(sorted(n for n in vars(self) if n[:1].isupper()))
+        text = f"`{self.__name__}` has no type {name!r} in Skydeck; it has: {known or 'none'}"
+        # `from std_msgs.msg import Foo` turns an AttributeError into Python's vaguer "cannot
+        # import name"; there we raise the ImportError ourselves. Anywhere else (hasattr,
+        # getattr with a default) it must stay an AttributeError.
+        if _called_by_import_from(sys._getframe(1)):
+            raise UnknownMessageError(text)
+        raise AttributeError(text)
+
+
+_IMPORT_FROM = dis.opmap["IMPORT_FROM"]
+
+
+def _called_by_import_from(frame: types.FrameType) -> bool:
+    code = frame.f_code.co_code
+    return 0 <= frame.f_lasti < len(code) and code[frame.f_lasti] == _IMPORT_FROM
+
+
+def message_view(package: str, kind: str) -> types.ModuleType:
+    """The module ``package.kind`` (``geometry_msgs.msg``): every ``package/kind/*`` type of
+    ``shared_models.package`` under its ROS name (and, for a service's parts, ROS 1's name)."""
+    source = importlib.import_module(f"shared_models.{package}")
+    view = _MessageView(f"{package}.{kind}", f"The {package}/{kind} types (views of shared_models.{package}).")
+    view._skydeck_package = package
+    prefix = f"{package}/{kind}/"
+    for value in vars(source).values():
+        if not (isinstance(value, type) and issubclass(value, Message | ServiceType)):
+            continue
+        ros_type = value.__dict__.get("__ros_type__", "")
+        if ros_type.startswith(prefix):
+            setattr(view, ros_type[len(prefix) :], value)  # Trigger, Trigger_Request
+            setattr(view, value.__name__, value)  # TriggerRequest (ROS 1), usually the same
+    view.__all__ = sorted(n for n in vars(view) if n[:1].isupper())  # type: ignore[attr-defined]
+    if kind == "srv" and not any(isinstance(v, type) and issubclass(v, ServiceType) for v in vars(view).values()):
+        raise UnknownMessageError(f"`{package}` has no services in Skydeck (no `{package}.srv`)")
+    return view
+
+
+class RosImportFinder(importlib.abc.MetaPathFinder):
+    """Maps ROS's module names (see the module docstring); installed once per process."""
+
+    def find_spec(
+        self, fullname: str, path: Sequence[str] | None = None, target: types.ModuleType | None = None
+    ) -> importlib.machinery.ModuleSpec | None:
+        top, _, rest = fullname.partition(".")
+        if top in FACADES:
+            return self._facade_spec(fullname, FACADES[top] + (f".{rest}" if rest else ""))
+        if top in MESSAGE_PACKAGES:
+            return self._view_spec(top, rest)
+        looks_like_ros = top in _NOT_PROVIDED or top.endswith(_PACKAGE_SUFFIXES)
+        if rest or not looks_like_ros or self._found_elsewhere(fullname, path, target):
+            return None  # not ours, or a real module of that name (the user's own): Python's
+        if top in _NOT_PROVIDED:
+            raise NotProvidedImportError(not_provided(f"`{top}`"))
+        raise UnknownMessagePackageError(f"`{top}` is not a message package Skydeck knows; known: {_known()}")
+
+    def _facade_spec(self, fullname: str, target: str) -> importlib.machinery.ModuleSpec:
+        try:
+            real = importlib.util.find_spec(target)
+        except ModuleNotFoundError:
+            real = None
+        if real is None:
+            raise NotProvidedImportError(not_provided(f"`{fullname}`"))
+        return importlib.machinery.ModuleSpec(
+            fullname, _AliasLoader(target), is_package=real.submodule_search_locations is not None
+        )
+
+    def _view_spec(self, package: str, kind: str) -> importlib.machinery.ModuleSpec:
+        if not kind:
+            return importlib.machinery.ModuleSpec(package, _ViewLoader(package, None), is_package=True)
+        if kind == "action":
+            raise NotProvidedImportError(not_provided(f"`{package}.action` (ROS actions)"))
+        if kind not in _KINDS:
+            raise UnknownMessageError(f"`{package}.{kind}`: a message package has .msg and .srv modules only")
+        return importlib.machinery.ModuleSpec(f"{package}.{kind}", _ViewLoader(package, kind))
+
+    def _found_elsewhere(
+        self, fullname: str, path: Sequence[str] | None, target: types.ModuleType | None
+    ) -> bool:
+        for finder in sys.meta_path:
+            if finder is self or not hasattr(finder, "find_spec"):
+                continue
+            if finder.find_spec(fullname, path, target) is not None:
+                return True
+        return False

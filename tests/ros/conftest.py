@@ -1,0 +1,43 @@
+"""Running ROS files as a user does: ``skydeck run FILE.py ...`` in a subprocess, against a
+core (and the robot world) started on free loopback ports."""
+
+from __future__ import annotations
+
+import os
+import signal
+import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+from services.launch.background import BackgroundProcess
+from tests.web_ui.system import REPO, System
+
+CORPUS = Path(__file__).resolve().parent / "corpus"
+
+
+@contextmanager
+def ros_file(system: System, path: Path | str, *args: str, sim_time: bool = True) -> Iterator[BackgroundProcess]:
+    """``skydeck run PATH ARGS [--ros-args -p use_sim_time:=true]`` against ``system``'s core,
+    stopped with Ctrl-C (SIGINT) after the block if still running."""
+    ros_args = ["--ros-args", "-p", "use_sim_time:=true"] if sim_time else []
+    if sim_time and "--ros-args" in args:
+        split = args.index("--ros-args")
+        args = (*args[:split], *ros_args, *args[split + 1 :])
+    elif sim_time:
+        args = (*args, *ros_args)
+    process = BackgroundProcess(
+        [sys.executable, "-m", "services.cli", "run", str(path), *args],
+        name=f"skydeck run {Path(path).name} {' '.join(args)}",
+        cwd=REPO,
+        env={**os.environ, "SKYDECK_CORE_URL": system.url, "PYTHONUNBUFFERED": "1"},
+    )
+    try:
+        yield process
+    finally:
+        process.stop(signal.SIGINT, timeout_s=10)
+
+
+def no_skydeck_frames(lines: list[str]) -> bool:
+    """Whether no traceback line points into Skydeck's own code."""
+    return not any(f"{REPO}/services/" in line or f"{REPO}/shared_models/" in line for line in lines)
