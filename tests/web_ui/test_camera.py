@@ -7,8 +7,7 @@ from collections.abc import Iterator
 
 import pytest
 
-from tests.conftest import free_port_block
-from tests.web_ui.system import System
+from tests.web_ui.system import System, started
 
 pytestmark = [pytest.mark.browser, pytest.mark.timeout(120)]
 
@@ -16,15 +15,9 @@ pytestmark = [pytest.mark.browser, pytest.mark.timeout(120)]
 @pytest.fixture(scope="module")
 def system() -> Iterator[System]:
     """Overrides the conftest's: the core and a simulator whose camera is 640x480."""
-    base = free_port_block(5)
-    running = System(base)
-    try:
-        running.start("core", ["core"], base)
-        camera = ["--camera-width", "640", "--camera-height", "480", "--camera-rate", "10"]
-        running.start("sim", ["run", "sim", "--speed", "1", "--seed", "1", *camera], base + 1)
+    camera = ["--camera-width", "640", "--camera-height", "480", "--camera-rate", "10"]
+    with started(("sim", ["run", "sim", "--speed", "1", "--seed", "1", *camera])) as running:
         yield running
-    finally:
-        running.stop()
 
 
 def _socket(page, topic: str) -> dict:  # type: ignore[no-untyped-def]
