@@ -1,7 +1,9 @@
-"""Cameras: the view from behind and above the drone, or from any eye, as a JPEG.
+"""Cameras: the view from behind and above the drone, or from any eye, as raw RGB or a JPEG.
 
 Uses PyBullet's software renderer (ER_TINY_RENDERER), so it works headless, and Pillow to
-encode. Costs a few milliseconds per frame at 320x240; call it at a video rate, not every step.
+encode. It is the camera's whole cost: tens of milliseconds at 320x240, about a hundred at
+640x480 on one core, and PyBullet holds the GIL meanwhile (a thread would not help). Render at
+a video rate, only while someone watches, never every step.
 """
 
 from __future__ import annotations
@@ -9,18 +11,78 @@ from __future__ import annotations
 import io
 import math
 
+import numpy as np
 import pybullet as p
 from PIL import Image
 
 from sim_server.world import World, yaw_of
 
-__all__ = ["render_jpeg", "render_view_jpeg"]
+__all__ = ["View", "chase_view", "encode_jpeg", "render_jpeg", "render_rgb", "render_view_jpeg"]
 
 _CHASE_DISTANCE_M = 6.0
 _CHASE_HEIGHT_M = 3.0
 _FIELD_OF_VIEW_DEG = 60.0
 _NEAR_M = 0.1
 _FAR_M = 120.0
+MAX_SIDE = 4096
+
+Vector = tuple[float, float, float]
+
+
+class View:
+    """Where a camera stands and looks (z up), and its depth range."""
+
+    __slots__ = ("eye", "far_m", "near_m", "target")
+
+    def __init__(self, eye: Vector, target: Vector, *, near_m: float = _NEAR_M, far_m: float = _FAR_M) -> None:
+        self.eye, self.target, self.near_m, self.far_m = eye, target, near_m, far_m
+
+
+def chase_view(world: World) -> View:
+    """Behind and above the drone, looking at it."""
+    (x, y, z), orientation = world.drone_pose()
+    yaw = yaw_of(orientation)
+    eye = (x - _CHASE_DISTANCE_M * math.cos(yaw), y - _CHASE_DISTANCE_M * math.sin(yaw), z + _CHASE_HEIGHT_M)
+    return View(eye, (x, y, z), far_m=_FAR_M)
+
+
+def render_rgb(client: int, view: View, width: int, height: int) -> bytes:
+    """The view in PyBullet client ``client`` as ``rgb8`` pixels: ``height`` rows of
+    ``3 * width`` bytes, the top row first (sensor_msgs/Image's layout)."""
+    if not (1 <= width <= MAX_SIDE and 1 <= height <= MAX_SIDE):
+        raise ValueError(f"image size {width}x{height} is outside 1..{MAX_SIDE} pixels per side")
+    view_matrix = p.computeViewMatrix(view.eye, view.target, (0.0, 0.0, 1.0), physicsClientId=client)
+    projection = p.computeProjectionMatrixFOV(
+        _FIELD_OF_VIEW_DEG, width / height, view.near_m, view.far_m, physicsClientId=client
+    )
+    _, _, rgba, _, _ = p.getCameraImage(
+        width,
+        height,
+        view_matrix,
+        projection,
+        renderer=p.ER_TINY_RENDERER,
+        flags=p.ER_NO_SEGMENTATION_MASK,
+        physicsClientId=client,
+    )
+    # PyBullet (built with numpy) hands back a (height, width, 4) array: drop alpha in one copy.
+    pixels = np.asarray(rgba, dtype=np.uint8).reshape(height, width, 4)
+    return pixels[:, :, :3].tobytes()
+
+
+def encode_jpeg(rgb: bytes, width: int, height: int, quality: int = 70) -> bytes:
+    """``rgb8`` pixels (as :func:`render_rgb` makes them) as a JPEG."""
+    if not 1 <= quality <= 95:
+        raise ValueError(f"quality={quality} is outside [1, 95] (Pillow's useful JPEG range)")
+    out = io.BytesIO()
+    Image.frombytes("RGB", (width, height), rgb).save(out, format="JPEG", quality=quality)
+    return out.getvalue()
+
+
+def render_view_jpeg(client: int, view: View, *, width: int = 320, height: int = 240, quality: int = 70) -> bytes:
+    """The view in PyBullet client ``client`` as a JPEG."""
+    if not 1 <= quality <= 95:  # before the costly render
+        raise ValueError(f"quality={quality} is outside [1, 95] (Pillow's useful JPEG range)")
+    return encode_jpeg(render_rgb(client, view, width, height), width, height, quality)
 
 
 def render_jpeg(world: World, width: int = 320, height: int = 240, quality: int = 70) -> bytes:
@@ -31,49 +93,4 @@ def render_jpeg(world: World, width: int = 320, height: int = 240, quality: int 
         frame = render_jpeg(world)            # 320x240, quality 70
         Path("view.jpg").write_bytes(frame)
     """
-    (x, y, z), orientation = world.drone_pose()
-    yaw = yaw_of(orientation)
-    eye = (
-        x - _CHASE_DISTANCE_M * math.cos(yaw),
-        y - _CHASE_DISTANCE_M * math.sin(yaw),
-        z + _CHASE_HEIGHT_M,
-    )
-    return render_view_jpeg(
-        world.client, eye, (x, y, z), width=width, height=height, quality=quality, far_m=_FAR_M
-    )
-
-
-def render_view_jpeg(
-    client: int,
-    eye: tuple[float, float, float],
-    target: tuple[float, float, float],
-    *,
-    width: int = 320,
-    height: int = 240,
-    quality: int = 70,
-    field_of_view_deg: float = _FIELD_OF_VIEW_DEG,
-    near_m: float = _NEAR_M,
-    far_m: float = _FAR_M,
-) -> bytes:
-    """The view from ``eye`` towards ``target`` (z up) in PyBullet client ``client``, as JPEG."""
-    if not (1 <= width <= 4096 and 1 <= height <= 4096):
-        raise ValueError(f"image size {width}x{height} is outside 1..4096 pixels per side")
-    if not 1 <= quality <= 95:
-        raise ValueError(f"quality={quality} is outside [1, 95] (Pillow's useful JPEG range)")
-    view = p.computeViewMatrix(eye, target, (0.0, 0.0, 1.0), physicsClientId=client)
-    projection = p.computeProjectionMatrixFOV(
-        field_of_view_deg, width / height, near_m, far_m, physicsClientId=client
-    )
-    _, _, rgba, _, _ = p.getCameraImage(
-        width,
-        height,
-        view,
-        projection,
-        renderer=p.ER_TINY_RENDERER,
-        flags=p.ER_NO_SEGMENTATION_MASK,
-        physicsClientId=client,
-    )
-    image = Image.frombytes("RGBA", (width, height), bytes(rgba)).convert("RGB")
-    out = io.BytesIO()
-    image.save(out, format="JPEG", quality=quality)
-    return out.getvalue()
+    return render_view_jpeg(world.client, chase_view(world), width=width, height=height, quality=quality)

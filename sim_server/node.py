@@ -6,7 +6,8 @@
 The drone world publishes (sim-time rates) ``/drone/pose`` 60 Hz, ``/clock`` with every pose,
 ``/simulator/boxes`` 10 Hz (latched), ``/drone/state`` 5 Hz, ``/simulator/world`` (latched) once
 per build of the world (at start and at every reset: a new random id each time), and
-``/simulator/camera`` 5 Hz of wall time only while someone subscribes. Follows
+``/simulator/camera`` (JPEG) and ``/simulator/camera/image_raw`` (rgb8) at ``--camera-rate``
+(5 Hz of wall time by default) only while someone subscribes. Follows
 ``/drone/setpoint`` and, when no setpoint stream is active, ``/drone/cmd_vel``. Serves
 ``/simulator/reset``. Bad input is refused with a warning and never reaches the physics.
 """
@@ -24,7 +25,14 @@ from shared_models.std_msgs import Header
 from sim_server.commands import InvalidCommand
 from sim_server.limits import DEFAULT_BOXES, MAX_BOXES, PHYSICS_HZ
 from sim_server.robot.limits import DEFAULT_OBSTACLES, MAX_OBSTACLES, MAX_ROBOTS
-from sim_server.settings import SimSettings
+from sim_server.settings import (
+    MAX_CAMERA_HEIGHT,
+    MAX_CAMERA_RATE_HZ,
+    MAX_CAMERA_WIDTH,
+    MIN_CAMERA_RATE_HZ,
+    MIN_CAMERA_SIDE,
+    SimSettings,
+)
 from sim_server.world import World, WorldConfig
 from sim_server.world_node import DEFAULT_PORT, WorldNode
 
@@ -89,10 +97,10 @@ class SimulatorNode(WorldNode):
     def _world_fields(self) -> dict[str, Any]:
         return {"world": "drone", "boxes": self.sim.boxes}
 
-    def _render_camera(self) -> bytes:
-        from sim_server.camera import render_jpeg
+    def _render_camera(self, width: int, height: int) -> bytes:
+        from sim_server.camera import chase_view, render_rgb
 
-        return render_jpeg(self.world)
+        return render_rgb(self.world.client, chase_view(self.world), width, height)
 
     def _publish_tick(self, steps: int) -> None:
         header = self.header()
@@ -132,7 +140,7 @@ class SimulatorNode(WorldNode):
 
 def main(argv: list[str] | None = None) -> int:
     """``skydeck run sim [--world drone|robot] [--seed N] [--speed F|max] [--boxes K]
-    [--robots N] [--obstacles K]``."""
+    [--robots N] [--obstacles K] [--camera-width W] [--camera-height H] [--camera-rate HZ]``."""
     parser = argparse.ArgumentParser(
         prog="skydeck run sim", description="The PyBullet simulator: the drone world or the robot world."
     )
@@ -143,6 +151,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--robots", help=f"robot world: number of robots, 1-{MAX_ROBOTS} (default 1)")
     parser.add_argument(
         "--obstacles", help=f"robot world: number of box obstacles, 0-{MAX_OBSTACLES} (default {DEFAULT_OBSTACLES})"
+    )
+    parser.add_argument("--camera-width", help=f"camera image width, {MIN_CAMERA_SIDE}-{MAX_CAMERA_WIDTH} pixels (default 320)")
+    parser.add_argument("--camera-height", help=f"camera image height, {MIN_CAMERA_SIDE}-{MAX_CAMERA_HEIGHT} pixels (default 240)")
+    parser.add_argument(
+        "--camera-rate",
+        help=f"camera frames a second while watched, {MIN_CAMERA_RATE_HZ:g}-{MAX_CAMERA_RATE_HZ:g} (default 5)",
     )
     sim = settings_from_flags(parser, SimSettings, argv)
     if sim.world == "robot":

@@ -1,5 +1,5 @@
-"""The simulator's options: flags ``--world/--seed/--speed/--boxes/--robots/--obstacles`` or
-``SKYDECK_SIM_*`` variables. Pure settings: importing this loads no PyBullet."""
+"""The simulator's options: flags ``--world/--seed/--speed/--boxes/--robots/--obstacles`` and
+``--camera-width/--camera-height/--camera-rate``, or ``SKYDECK_SIM_*`` variables. Pure settings: importing this loads no PyBullet."""
 
 from __future__ import annotations
 
@@ -14,7 +14,21 @@ from pydantic_settings import BaseSettings, SettingsConfigDict
 from sim_server.limits import DEFAULT_BOXES, MAX_BOXES
 from sim_server.robot.limits import DEFAULT_OBSTACLES, MAX_OBSTACLES, MAX_ROBOTS
 
-__all__ = ["SimSettings", "draw_seed"]
+__all__ = [
+    "MAX_CAMERA_HEIGHT",
+    "MAX_CAMERA_RATE_HZ",
+    "MAX_CAMERA_WIDTH",
+    "MIN_CAMERA_RATE_HZ",
+    "MIN_CAMERA_SIDE",
+    "SimSettings",
+    "draw_seed",
+]
+
+MIN_CAMERA_SIDE = 16
+MAX_CAMERA_WIDTH = 640
+MAX_CAMERA_HEIGHT = 480
+MIN_CAMERA_RATE_HZ = 0.1
+MAX_CAMERA_RATE_HZ = 30.0
 
 
 def draw_seed() -> int:
@@ -43,6 +57,20 @@ class SimSettings(BaseSettings):
         ge=0,
         le=MAX_OBSTACLES,
         description=f"the robot world's box obstacles (default {DEFAULT_OBSTACLES})",
+    )
+
+    camera_width: int = Field(
+        default=320, ge=MIN_CAMERA_SIDE, le=MAX_CAMERA_WIDTH, description="the camera's image width, pixels"
+    )
+    camera_height: int = Field(
+        default=240, ge=MIN_CAMERA_SIDE, le=MAX_CAMERA_HEIGHT, description="the camera's image height, pixels"
+    )
+    camera_rate: float = Field(
+        default=5.0,
+        ge=MIN_CAMERA_RATE_HZ,
+        le=MAX_CAMERA_RATE_HZ,
+        allow_inf_nan=False,
+        description="camera frames a second (wall time), while someone reads them",
     )
 
     @field_validator("speed", mode="before")

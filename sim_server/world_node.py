@@ -1,5 +1,5 @@
 """What every world's simulator node shares: its name, ``/clock``, the world's identity on
-``/simulator/world``, ``/simulator/reset``, the camera, throttled warnings, and the physics loop
+``/simulator/world``, ``/simulator/reset``, the camera (:mod:`sim_server.camera_stream`), throttled warnings, and the physics loop
 that keeps pace with the wall clock (or runs flat out at ``--speed max``).
 
 A world's node (``sim_server.node.SimulatorNode``, the drone; ``sim_server.robot.node.
@@ -26,15 +26,14 @@ from services.runtime.settings import process_settings
 from shared_models.builtin_interfaces import Time
 from shared_models.rcl_interfaces import IntegerRange, ParameterDescriptor
 from shared_models.ros_workshop import SimWorld
-from shared_models.sensor_msgs import CompressedImage
 from shared_models.std_msgs import Header
 from shared_models.std_srvs import Trigger, TriggerRequest, TriggerResponse
+from sim_server.camera_stream import CameraStream
 from sim_server.settings import SimSettings, draw_seed
 
 __all__ = ["DEFAULT_PORT", "SteppedWorld", "WorldNode"]
 
 DEFAULT_PORT = 8001
-CAMERA_PERIOD_S = 0.2  # 5 Hz wall time: rendering costs milliseconds, whatever the sim speed
 # Falling further behind real time than this resets the pace instead of bursting to catch up.
 _MAX_LAG_S = 0.25
 _WARN_EVERY_S = 5.0
@@ -77,9 +76,8 @@ class WorldNode(Node):
         self._last_warning: defaultdict[str, float] = defaultdict(lambda: -math.inf)
         self.world_publisher = self.create_publisher(SimWorld, "/simulator/world", 1, latched=True)
         self.clock_publisher = self.create_publisher(Time, "/clock", 10)
-        self.camera_publisher = self.create_publisher(CompressedImage, "/simulator/camera", 2)
+        self.camera = CameraStream(self, self._render_camera, self.header)
         self.create_service(Trigger, "/simulator/reset", self.on_reset)
-        self.create_timer(CAMERA_PERIOD_S, self.publish_camera, wall_clock=True)
 
     # -- hooks --------------------------------------------------------------------------------
 
@@ -99,8 +97,8 @@ class WorldNode(Node):
         """The world-specific fields of ``/simulator/world`` (its kind and sizes)."""
         raise NotImplementedError
 
-    def _render_camera(self) -> bytes:
-        """One JPEG of the world's camera."""
+    def _render_camera(self, width: int, height: int) -> bytes:
+        """One image of the world's camera, ``rgb8`` (:func:`sim_server.camera.render_rgb`)."""
         raise NotImplementedError
 
     def _count_parameters(self) -> dict[str, tuple[int, int, str]]:
@@ -140,7 +138,7 @@ class WorldNode(Node):
             for name, (value, maximum, description) in self._count_parameters().items()
         }
         try:
-            return SimSettings(world=sim.world, seed=seed, speed=speed, **counts)
+            return SimSettings(**{**sim.model_dump(exclude_unset=True), "seed": seed, "speed": speed, **counts})
         except ValidationError as error:
             problem = error.errors()[0]
             raise InvalidParameterValueException(
@@ -189,13 +187,6 @@ class WorldNode(Node):
         )
         self.world_publisher.publish(info)
         return info
-
-    def publish_camera(self) -> None:
-        if self.camera_publisher.get_subscription_count() == 0:
-            return  # rendering costs milliseconds: only while someone watches
-        self.camera_publisher.publish(
-            CompressedImage(header=self.header(), format="jpeg", data=self._render_camera())
-        )
 
     # -- the physics loop ---------------------------------------------------------------------
 

@@ -111,4 +111,5 @@ def settings_from_flags(parser: argparse.ArgumentParser, settings_type: type[B],
         return settings_type(**overrides)
     except ValidationError as error:
         first = error.errors()[0]
-        parser.error(f"--{first['loc'][0]}: {first['msg']}")
+        flag = str(first["loc"][0]).replace("_", "-")
+        parser.error(f"--{flag}: {first['msg']}")

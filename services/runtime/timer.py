@@ -42,10 +42,10 @@ class Timer:
     async def run(self, logger: logging.Logger) -> None:
         """Tick until cancelled (the task is owned by the node)."""
         clock = self._clock
-        period_s = self.timer_period_s
         what = f"timer callback {getattr(self.callback, '__qualname__', self.callback)!r}"
-        due_s = clock.now_s() + period_s
+        due_s = clock.now_s() + self.timer_period_s
         while True:
+            period_s = self.timer_period_s  # read every tick: a new period takes effect at once
             sleeper = asyncio.ensure_future(clock.sleep_until(due_s))
             resetter = asyncio.ensure_future(self._reset.wait())
             try:
@@ -55,7 +55,7 @@ class Timer:
                 resetter.cancel()
             if resetter in done:
                 self._reset.clear()
-                due_s = clock.now_s() + period_s
+                due_s = clock.now_s() + self.timer_period_s
                 continue
             if self._canceled:
                 await self._reset.wait()  # idle until reset(); the next pass re-arms the period

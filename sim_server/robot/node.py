@@ -37,7 +37,7 @@ from shared_models.sensor_msgs import LaserScan
 from shared_models.std_msgs import ColorRGBA, Header
 from shared_models.tf2_msgs import TFMessage
 from shared_models.visualization_msgs import Marker, MarkerArray
-from sim_server.camera import render_view_jpeg
+from sim_server.camera import View, render_rgb
 from sim_server.commands import InvalidCommand
 from sim_server.limits import PHYSICS_DT_S
 from sim_server.robot.limits import (
@@ -147,12 +147,12 @@ class RobotSimNode(WorldNode):
     def _world_fields(self) -> dict[str, Any]:
         return {"world": "robot", "boxes": len(self.world.obstacles), "namespaces": self.namespaces}
 
-    def _render_camera(self) -> bytes:
+    def _render_camera(self, width: int, height: int) -> bytes:
         x, y, yaw = self.world.robot_pose(0)
         c, s = math.cos(yaw), math.sin(yaw)
         eye = (x + 0.1 * c, y + 0.1 * s, LASER_HEIGHT_M + 0.1)
         target = (x + 2.0 * c, y + 2.0 * s, LASER_HEIGHT_M)
-        return render_view_jpeg(self.world.client, eye, target, near_m=0.05, far_m=12.0)
+        return render_rgb(self.world.client, View(eye, target, near_m=0.05, far_m=12.0), width, height)
 
     def _publish_tick(self, steps: int) -> None:
         # The simulator's hot path at --speed max: messages are validated from plain dicts

@@ -83,7 +83,7 @@ async def test_reset_drops_new_boxes_and_boxes_are_latched(core, start_node) -> 
 async def test_camera_renders_only_while_watched(core, start_node) -> None:
     sim = await start_node(_sim())
     await asyncio.sleep(0.5)  # several camera periods pass with nobody watching
-    assert sim.camera_publisher._endpoint.published_count == 0
+    assert sim.camera.compressed._endpoint.published_count == 0
     async with connect(stream_url(core.url, "/simulator/camera"), max_size=None) as websocket:
         frame = json.loads(await asyncio.wait_for(websocket.recv(), 10))
     assert frame["format"] == "jpeg"

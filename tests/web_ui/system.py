@@ -6,13 +6,16 @@ on free loopback ports, each waited for on ``GET /health``, stopped with SIGTERM
 
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 import sys
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from services.launch.background import BackgroundProcess
+from tests.conftest import free_port_block
 
 REPO = Path(__file__).resolve().parents[2]
 STARTUP_TIMEOUT_S = 30.0
@@ -72,3 +75,17 @@ def answered(service: str) -> str:
         "() => { const r = window.skydeck.lastCommand; "
         f"return r && r.service === '{service}' && r.kind !== 'pending'; }}"
     )
+
+
+@contextlib.contextmanager
+def started(*processes: tuple[str, list[str]]) -> Iterator[System]:
+    """The core and the given processes (``(name, skydeck args)``) on P, P+1, ...; stopped after."""
+    base = free_port_block(5)
+    running = System(base)
+    try:
+        running.start("core", ["core"], base)
+        for offset, (name, args) in enumerate(processes, start=1):
+            running.start(name, args, base + offset)
+        yield running
+    finally:
+        running.stop()

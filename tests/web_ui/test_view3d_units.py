@@ -12,22 +12,16 @@ from collections.abc import Iterator
 
 import pytest
 
-from tests.conftest import free_port_block
 from tests.web_ui.conftest import open_dashboard
-from tests.web_ui.system import System
+from tests.web_ui.system import System, started
 
 pytestmark = [pytest.mark.browser, pytest.mark.timeout(60)]
 
 
 @pytest.fixture(scope="module")
 def system() -> Iterator[System]:
-    base = free_port_block(5)
-    running = System(base)
-    try:
-        running.start("core", ["core"], base)
+    with started() as running:
         yield running
-    finally:
-        running.stop()
 
 
 @pytest.fixture(scope="module")

@@ -110,13 +110,17 @@ async def test_an_image_round_trips_bit_exact_in_binary(core, start_node) -> Non
         (b"\xc6\x7f\xff\xff\xff", "msgpack"),  # a 2 GiB byte string in five bytes
     ],
 )
-async def test_bad_binary_frames_close_with_1007_and_nothing_else_is_disturbed(start_node, frame, expected) -> None:
+@pytest.mark.parametrize("via_core", [False, True])
+async def test_bad_binary_frames_close_with_1007_and_nothing_else_is_disturbed(
+    core, start_node, frame, expected, via_core
+) -> None:
     camera = await start_node(Camera)
-    async with connect(stream_url(camera.url, "/camera/upload", encoding="msgpack")) as websocket:
+    base = core.url if via_core else camera.url  # the gateway refuses them as the node does
+    async with connect(stream_url(base, "/camera/upload", encoding="msgpack")) as websocket:
         await websocket.send(frame)
         code, reason = await _closed(websocket)
     assert code == 1007 and expected in reason
-    async with connect(stream_url(camera.url, "/camera/upload", encoding="msgpack")) as websocket:
+    async with connect(stream_url(base, "/camera/upload", encoding="msgpack")) as websocket:
         await websocket.send(ormsgpack.packb(_image().model_dump()))
         await wait_until(lambda: camera.images, what="the node to keep serving")
 

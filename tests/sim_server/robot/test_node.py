@@ -64,6 +64,7 @@ def test_the_topics_are_the_neato_drivers(room: System) -> None:
         "/odom": "nav_msgs/msg/Odometry", "/bump": "neato2_interfaces/msg/Bump",
         "/tf": "tf2_msgs/msg/TFMessage", "/tf_static": "tf2_msgs/msg/TFMessage",
         "/clock": "builtin_interfaces/msg/Time", "/simulator/camera": "sensor_msgs/msg/CompressedImage",
+        "/simulator/camera/image_raw": "sensor_msgs/msg/Image",
         "/simulator/people": "geometry_msgs/msg/PoseArray", "/simulator/robots": "geometry_msgs/msg/PoseArray",
         "/simulator/obstacles": "visualization_msgs/msg/MarkerArray", "/simulator/world": "ros_workshop/msg/SimWorld",
     }  # fmt: skip

@@ -3,6 +3,7 @@
 
 import { getToken, requestToken } from "./auth.js";
 import { CLOSE } from "./config.js";
+import { decode as decodeMsgpack } from "./msgpack.js";
 
 const TOKEN_HINT = "token";
 
@@ -83,24 +84,33 @@ export function topicUrl(topic, params = {}) {
 const sockets = new Set(); // every live TopicSocket, for the debug hook
 
 export function socketStates() {
-  return [...sockets].map((s) => ({ topic: s.topic, state: s.state, messages: s.messageCount }));
+  return [...sockets].map((s) => ({
+    topic: s.topic,
+    state: s.state,
+    messages: s.messageCount,
+    encoding: s.binary ? "msgpack" : "json",
+    binaryFrames: s.binaryFrames,
+  }));
 }
 
 /**
  * One topic as a stream: onMessage(msg) per frame; publish(msg) sends a frame of the topic's
  * type on the same socket (never sent back to it). mode "publish" reads nothing, "subscribe"
- * may not publish. Reconnects with exponential backoff (0.5 s .. 10 s) until close().
+ * may not publish. encoding "msgpack" reads binary frames (byte arrays arrive as Uint8Array,
+ * not base64: for images); such a socket only reads. Reconnects with exponential backoff (0.5 s .. 10 s) until close().
  * onStatus({state, code, reason}) reports "connecting" | "open" | "closed" | "stopped".
  */
 export class TopicSocket {
-  constructor(topic, { rate, queue, type, mode, onMessage, onStatus, onError } = {}) {
+  constructor(topic, { rate, queue, type, mode, encoding, onMessage, onStatus, onError } = {}) {
     this.topic = topic;
-    this.params = { rate, queue, type, mode };
+    this.binary = encoding === "msgpack";
+    this.params = { rate, queue, type, mode: this.binary ? "subscribe" : mode, encoding };
     this.onMessage = onMessage || (() => {});
     this.onStatus = onStatus || (() => {});
     this.onError = onError || (() => {});
     this.state = "stopped";
     this.messageCount = 0;
+    this.binaryFrames = 0; // frames that came as msgpack: the encoding the core agreed to
     this.lastMessageAt = 0;
     this._ws = null;
     this._timer = null;
@@ -130,7 +140,7 @@ export class TopicSocket {
 
   /** Send one message; false when the socket is not open right now (the message is dropped). */
   publish(msg) {
-    if (!this._ws || this._ws.readyState !== WebSocket.OPEN) return false;
+    if (this.binary || !this._ws || this._ws.readyState !== WebSocket.OPEN) return false;
     this._ws.send(JSON.stringify(msg));
     return true;
   }
@@ -156,6 +166,7 @@ export class TopicSocket {
       return;
     }
     this._ws = ws;
+    if (this.binary) ws.binaryType = "arraybuffer";
     ws.onopen = () => {
       this._backoffMs = 500;
       this._setState("open");
@@ -163,12 +174,14 @@ export class TopicSocket {
     ws.onmessage = (event) => {
       let msg;
       try {
-        msg = JSON.parse(event.data);
-      } catch {
+        msg = typeof event.data === "string" ? JSON.parse(event.data) : decodeMsgpack(event.data);
+      } catch (error) {
+        this.onError(`${this.topic}: a frame that does not decode: ${error.message}`);
         return;
       }
       this._backoffMs = 500;
       this.messageCount += 1;
+      if (typeof event.data !== "string") this.binaryFrames += 1;
       this.lastMessageAt = performance.now();
       this.onMessage(msg);
     };

@@ -136,7 +136,14 @@ const teleop = new Teleop({
   note: $("teleop-note"),
   topicLabel: $("teleop-topic"),
 });
-const camera = new CameraView({ toggle: $("camera-toggle"), figure: $("camera-view"), image: $("camera-image"), caption: $("camera-caption") });
+const camera = new CameraView({
+  toggle: $("camera-toggle"),
+  kind: $("camera-kind"),
+  figure: $("camera-view"),
+  image: $("camera-image"),
+  canvas: $("camera-canvas"),
+  caption: $("camera-caption"),
+});
 const log = new LogConsole({
   container: $("log"),
   level: $("log-level"),
@@ -246,7 +253,7 @@ window.skydeck = Object.freeze({
     return { enabled: teleop.enabled, held: [...teleop.held], sent: teleop.sent, twist: teleop.twist(), topic: teleop.topic };
   },
   get camera() {
-    return { shown: !camera.figure.hidden, frames: camera.frames };
+    return { shown: !camera.figure.hidden, topic: camera.topic, frames: camera.frames, error: camera.error };
   },
   get log() {
     return log.entries.map((e) => ({ ...e }));
@@ -259,6 +266,7 @@ window.skydeck = Object.freeze({
   },
   get parameters() {
     return { node: parameters.node, rows: copy(parameters.rows), last: copy(parameters.last) };
+  },
   get recorder() {
     return { recording: recorder.recording, current: copy(recorder.current), files: copy(recorder.files), error: recorder.error };
   },

@@ -5,7 +5,7 @@
 import { apiFetch, getJson } from "./api.js";
 
 const POLL_MS = 1000;
-const EXCLUDE = "^/simulator/camera$";
+const EXCLUDE = "^/simulator/camera(/.*)?$"; // both camera topics: rendered only while read
 
 export class RecorderPanel {
   constructor({ toggle, status, list }) {

@@ -54,6 +54,7 @@ export class Display {
     this._socket = new TopicSocket(this.topic, {
       rate: this.constructor.rate ?? undefined,
       queue: this.constructor.queue ?? undefined,
+      encoding: this.constructor.encoding ?? undefined,
       mode: "subscribe",
       onMessage: (msg) => this.receive(msg),
       onStatus: ({ state, code, reason }) => {
