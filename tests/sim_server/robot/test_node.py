@@ -70,7 +70,8 @@ def test_the_topics_are_the_neato_drivers(room: System) -> None:
     }  # fmt: skip
     assert {name: types.get(name) for name in expected} == expected
     assert "/drone/pose" not in types
-    assert [s["name"] for s in graph["services"] if not s["name"].startswith("/sim/")] == ["/simulator/reset"]
+    simulator = [s["name"] for s in graph["services"] if s["node"] == "/sim" and not s["name"].startswith("/sim/")]
+    assert simulator == ["/simulator/reset"]  # besides the node's parameter services
     world = latest(room, "/simulator/world")
     assert (world["world"], world["namespaces"], world["seed"]) == ("robot", ["/"], 1)
 
