@@ -6,9 +6,6 @@ serving. Names with odd characters are refused with a message that shows the bad
 
 from __future__ import annotations
 
-import json
-import math
-from collections.abc import Iterator
 from typing import Any
 from urllib.parse import quote
 
@@ -20,62 +17,12 @@ from websockets.sync.client import connect
 from services.core.core_node import CORE_NODE
 from services.runtime.edge.links import stream_url
 from services.runtime.wire import MAX_MESSAGE_BYTES
+from tests.bad_frames import OversizedFrame, bad_payloads, close_of
 from tests.reliability.conftest import Workshop
 
 pytestmark = [pytest.mark.e2e, pytest.mark.timeout(120)]
 
 OVERSIZED = MAX_MESSAGE_BYTES + 1
-
-
-def _leaves(value: Any, path: tuple[Any, ...] = ()) -> Iterator[tuple[tuple[Any, ...], Any]]:
-    if isinstance(value, dict):
-        for key, item in value.items():
-            yield from _leaves(item, (*path, key))
-    elif isinstance(value, list):
-        for index, item in enumerate(value):
-            yield from _leaves(item, (*path, index))
-    else:
-        yield path, value
-
-
-def _replaced(value: Any, path: tuple[Any, ...], new: Any) -> Any:
-    if not path:
-        return new
-    copy = json.loads(json.dumps(value))
-    target = copy
-    for key in path[:-1]:
-        target = target[key]
-    target[path[-1]] = new
-    return copy
-
-
-def _wrong(value: Any) -> Any:
-    """A value of another type that pydantic's lax mode will not coerce."""
-    return [1] if isinstance(value, str) else "fast"
-
-
-def bad_payloads(default: dict[str, Any]) -> dict[str, bytes]:
-    """Bad JSON documents for a type whose default value (as JSON) is ``default``."""
-    text = json.dumps(default)
-    cases = {
-        "malformed": b"{not json",
-        "truncated": text[: max(1, len(text) // 2)].encode(),
-        "wrong top-level type": b"[1, 2]",
-        "unknown field": json.dumps({**default, "bogus_field": 1}).encode(),
-    }
-    leaves = list(_leaves(default))
-    if leaves:
-        path, value = leaves[-1]
-        cases["wrong field type"] = json.dumps(_replaced(default, path, _wrong(value))).encode()
-    floats = [(path, value) for path, value in leaves if isinstance(value, float)]
-    if floats:
-        path, _ = floats[0]
-        cases["NaN"] = json.dumps(_replaced(default, path, math.nan)).encode()
-        cases["Infinity"] = json.dumps(_replaced(default, path, math.inf)).encode()
-        # pydantic's lax mode would coerce these two: the JSON schema says number, so must we
-        cases["number as a string"] = json.dumps(_replaced(default, path, "1.5")).encode()
-        cases["boolean for a number"] = json.dumps(_replaced(default, path, True)).encode()
-    return cases
 
 
 def _default(workshop: Workshop, type_name: str, part: str | None = None) -> dict[str, Any]:
@@ -105,19 +52,6 @@ def test_every_service_refuses_bad_bodies_and_keeps_serving(workshop: Workshop) 
     assert checked >= len(services) * 2 * 6
 
 
-def _close_of(url: str, payload: str | bytes) -> tuple[int | None, str]:
-    with connect(url, max_size=None, open_timeout=5) as websocket:
-        try:
-            # An oversized frame may be refused (1009) while we still write it: the send fails.
-            websocket.send(payload)
-            while True:  # a stream may deliver messages before it closes on our frame
-                websocket.recv(timeout=5)
-        except ConnectionClosed as closed:
-            return (closed.rcvd.code, closed.rcvd.reason) if closed.rcvd else (None, "")
-        except TimeoutError:
-            return None, "still open"
-
-
 def test_every_writable_topic_refuses_bad_frames_and_keeps_serving(workshop: Workshop) -> None:
     graph = workshop.graph()
     # The workshop's nodes take frames on topics they subscribe to; the core node (reading for
@@ -127,15 +61,15 @@ def test_every_writable_topic_refuses_bad_frames_and_keeps_serving(workshop: Wor
     assert {t["name"] for t in writable} >= {"/drone/setpoint", "/drone/cmd_vel", "/drone/pose", "/perception/boxes"}
     checked = 0
     for topic in writable:
-        cases: dict[str, tuple[str | bytes, int]] = {
+        cases: dict[str, tuple[str | bytes | OversizedFrame, int]] = {
             name: (body.decode(), 1007) for name, body in bad_payloads(_default(workshop, topic["type"])).items()
         }
-        cases["oversized"] = (json.dumps({"pad": "x" * OVERSIZED}), 1009)
+        cases["oversized"] = (OversizedFrame(OVERSIZED), 1009)
         cases["binary"] = (bytes(range(256)), 1003)
         subscribers = [s for s in topic["subscribers"] if s in nodes]
         for base in [workshop.core_url, *(nodes[s] for s in subscribers)]:
             for case, (payload, expected) in cases.items():
-                code, reason = _close_of(stream_url(base, topic["name"]), payload)
+                code, reason = close_of(stream_url(base, topic["name"]), payload)
                 where = f"{case} on {topic['name']} via {base}"
                 assert code == expected, (where, code, reason)
                 if expected != 1009:  # the server's frame limit closes before the frame is read

@@ -18,6 +18,7 @@ from services.runtime.edge.frames import FrameRejected
 from services.runtime.edge.links import stream_url
 from shared_models.geometry_msgs import PoseStamped
 from shared_models.sensor_msgs import Image
+from tests.bad_frames import oversized_header
 from tests.conftest import wait_until
 
 pytestmark = pytest.mark.timeout(60)
@@ -133,9 +134,8 @@ async def test_frames_of_the_other_kind_and_oversized_ones_are_refused(start_nod
     async with connect(stream_url(camera.url, "/camera/upload"), max_size=None) as websocket:
         await websocket.send(ormsgpack.packb(_image().model_dump()))  # binary on a JSON socket
         assert (await _closed(websocket))[0] == 1003
-    huge = ormsgpack.packb({"data": bytes(camera.settings.max_message_bytes + 1)})
     async with connect(stream_url(camera.url, "/camera/upload", encoding="msgpack"), max_size=None) as websocket:
-        await websocket.send(huge)
+        websocket.transport.write(oversized_header(camera.settings.max_message_bytes + 1, binary=True))
         assert (await _closed(websocket))[0] == 1009
 
 

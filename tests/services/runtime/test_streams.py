@@ -12,6 +12,7 @@ from websockets.exceptions import ConnectionClosed
 from services.runtime import Node
 from services.runtime.edge.links import stream_url
 from shared_models.geometry_msgs import Twist
+from tests.bad_frames import oversized_header
 from tests.conftest import wait_until
 
 
@@ -81,9 +82,8 @@ async def test_binary_frame_closes_with_1003(start_node) -> None:
 
 async def test_oversized_frame_closes_with_1009(core, start_node) -> None:
     sink = await start_node(Teleop)
-    big = json.dumps({"linear": {"x": 1.0}, "pad": "x" * (sink.settings.max_message_bytes + 10)})
     async with connect(stream_url(sink.url, "/drone/cmd_vel"), max_size=None) as websocket:
-        await websocket.send(big)
+        websocket.transport.write(oversized_header(sink.settings.max_message_bytes + 10))
         code, _ = await _closed(websocket)
     assert code == 1009
     async with connect(stream_url(sink.url, "/drone/cmd_vel")) as websocket:

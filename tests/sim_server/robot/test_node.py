@@ -27,7 +27,7 @@ from sim_server.robot.limits import (
     ROOM_HALF_SIZE_M,
     SCAN_BEAMS,
 )
-from tests.reliability.test_bad_input import _close_of, bad_payloads
+from tests.bad_frames import OversizedFrame, bad_payloads, close_of
 from tests.sim_server.robot.room import (
     call,
     latest,
@@ -168,14 +168,14 @@ def test_the_camera_looks_ahead_of_the_robot(room: System) -> None:
 
 def test_every_bad_frame_on_cmd_vel_is_refused_and_the_simulator_keeps_serving(room: System) -> None:
     default = latest(room, "/api/interfaces/geometry_msgs/msg/Twist")["default"]
-    cases: dict[str, tuple[str | bytes, int]] = {name: (body.decode(), 1007) for name, body in bad_payloads(default).items()}
-    cases["oversized"] = (json.dumps({"pad": "x" * (MAX_MESSAGE_BYTES + 1)}), 1009)
+    cases: dict[str, tuple[str | bytes | OversizedFrame, int]] = {name: (body.decode(), 1007) for name, body in bad_payloads(default).items()}
+    cases["oversized"] = (OversizedFrame(MAX_MESSAGE_BYTES + 1), 1009)
     cases["binary"] = (bytes(range(256)), 1003)
     assert {"NaN", "Infinity", "unknown field", "malformed"} <= set(cases)
     sim = room.processes["sim"].url
     for base in (room.url, sim):
         for case, (payload, expected) in cases.items():
-            code, reason = _close_of(stream_url(base, "/cmd_vel"), payload)
+            code, reason = close_of(stream_url(base, "/cmd_vel"), payload)
             assert code == expected, (case, base, code, reason)
     assert latest(room, "/api/graph") and _health(sim)
     odom = wait_for(room, "/odom", lambda m: True)
