@@ -39,6 +39,8 @@ from __future__ import annotations
 
 from typing import ClassVar
 
+from shared_models.close_codes import Close
+
 __all__ = ["SkydeckError"]
 
 
@@ -47,4 +49,4 @@ class SkydeckError(Exception):
 
     # How the HTTP and WebSocket edges answer this error when it reaches them.
     http_status: ClassVar[int] = 500
-    close_code: ClassVar[int] = 1011  # RFC 6455 "internal error"
+    close_code: ClassVar[int] = Close.INTERNAL

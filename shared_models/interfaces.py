@@ -13,6 +13,7 @@ import typing
 from typing import Annotated, Any, ClassVar, get_args, get_origin
 
 from shared_models._message import Declared, Message, RosPrimitive, ServiceType, all_interfaces
+from shared_models.close_codes import Close
 from shared_models.errors import SkydeckError
 
 __all__ = ["UnknownInterfaceError", "field_types", "get_interface", "interface_names", "interface_text"]
@@ -24,7 +25,7 @@ class UnknownInterfaceError(SkydeckError, LookupError):
     """Raised by :func:`get_interface` for a name no registered type has; carries ``suggestions``."""
 
     http_status = 404
-    close_code = 1008
+    close_code = Close.POLICY
 
     def __init__(self, name: str, suggestions: list[str]) -> None:
         hint = f" (did you mean {', '.join(suggestions)}?)" if suggestions else ""

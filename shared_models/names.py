@@ -11,6 +11,7 @@ name and points at the bad part.
 
 from __future__ import annotations
 
+from shared_models.close_codes import Close
 from shared_models.errors import SkydeckError
 
 __all__ = [
@@ -39,7 +40,7 @@ class InvalidNameError(SkydeckError, ValueError):
     """Raised for a topic, service or node name that is not a valid ROS name; carries ``name``."""
 
     http_status = 404
-    close_code = 1008
+    close_code = Close.POLICY
 
     def __init__(self, name: str, reason: str) -> None:
         super().__init__(f"invalid name {name!r}: {reason}")

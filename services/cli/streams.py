@@ -9,6 +9,7 @@ from websockets.exceptions import InvalidHandshake, InvalidStatus
 
 from services.cli.core_client import auth_headers, core_url, get_json, ws_url
 from services.cli.errors import CliError
+from shared_models.close_codes import Close
 
 __all__ = ["frames", "warn_if_unpublished"]
 
@@ -20,7 +21,7 @@ async def frames(name: str, *, rate: float | None = None, queue: int | None = No
         async with connect(url, additional_headers=auth_headers(), compression=None, max_size=None) as websocket:
             async for frame in websocket:
                 yield frame if isinstance(frame, str) else frame.decode()
-            if websocket.close_code not in (1000, 1001, None):
+            if websocket.close_code not in (Close.NORMAL, Close.GOING_AWAY, None):
                 raise CliError(f"{name}: the core closed the stream ({websocket.close_code}): {websocket.close_reason}")
     except (OSError, InvalidHandshake, TimeoutError) as error:
         if isinstance(error, InvalidStatus):

@@ -16,6 +16,7 @@ from services.cli.errors import CliError
 from services.cli.formatting import message_view, parse_data, to_csv, to_yaml
 from services.cli.streams import frames, warn_if_unpublished
 from services.cli.topic_stats import add_stats_parsers
+from shared_models.close_codes import Close
 
 __all__ = ["add_parser"]
 
@@ -181,7 +182,7 @@ def _pub(args: argparse.Namespace) -> int:
                     break
                 await asyncio.sleep(max(0.0, next_send - time.monotonic()))
             await websocket.close()
-            if websocket.close_code not in (1000, None):
+            if websocket.close_code not in (Close.NORMAL, None):
                 raise CliError(f"the core refused the message ({websocket.close_code}): {websocket.close_reason}")
 
     try:

@@ -6,8 +6,9 @@ values; the core serves them at ``GET /api/config`` so the browser never spells 
 
 from __future__ import annotations
 
-import enum
 from typing import Any
+
+from shared_models.close_codes import Close
 
 __all__ = [
     "DEFAULT_QUEUE",
@@ -19,19 +20,6 @@ __all__ = [
     "Close",
     "wire_description",
 ]
-
-
-class Close(enum.IntEnum):
-    """Why a Skydeck WebSocket was closed (RFC 6455 codes, then Skydeck's own 4000+)."""
-
-    NORMAL = 1000
-    UNSUPPORTED = 1003  # a binary frame where JSON text is expected, or a read-only stream
-    INVALID_FRAME = 1007  # not valid JSON, or not of the topic's type (the reason names the field)
-    POLICY = 1008  # a bad query option, an unknown type, a missing token, another site's page
-    TOO_BIG = 1009  # a frame over MAX_MESSAGE_BYTES
-    INTERNAL = 1011  # the server failed
-    REPLACED = 4000  # a node session: a newer node took this name
-    STALLED = 4001  # a reader took nothing for SKYDECK_STALL_TIMEOUT_S while frames waited
 
 
 # -- limits -------------------------------------------------------------------------------------

@@ -58,9 +58,9 @@ function personModel(legRadius, legSpacing) {
 }
 
 export class RobotWorld {
-  /** `room`: config.worlds.robot when the core has the robot world (sizes), else undefined. */
+  /** `room`: config.worlds.robot, the room's sizes as the core serves them (never spelled here). */
   constructor(room, tf, env) {
-    this.room = room || {};
+    this.room = room;
     this.tf = tf;
     this.root = new THREE.Group();
     this.obstacles = new MarkerDisplay("/simulator/obstacles", "visualization_msgs/msg/MarkerArray", {}, env);
@@ -125,7 +125,7 @@ export class RobotWorld {
       disposeObject(gone);
     }
     while (this.people.children.length < matrices.length) {
-      const person = personModel(this.room.leg_radius_m ?? 0.1, this.room.leg_spacing_m ?? 0.3);
+      const person = personModel(this.room.leg_radius_m, this.room.leg_spacing_m);
       person.matrixAutoUpdate = false;
       this.people.add(person);
     }
@@ -139,7 +139,7 @@ export class RobotWorld {
     for (const frame of this.tf.frames()) {
       if (BASE.test(frame) && !this.robots.has(frame)) {
         const robot = {
-          body: robotModel(this.room.robot_radius_m ?? 0.165),
+          body: robotModel(this.room.robot_radius_m),
           laser: laserModel(),
           laserFrame: frame.replace(BASE, "$1base_laser_link"),
         };
@@ -168,7 +168,7 @@ export class RobotWorld {
   }
 
   extent() {
-    return (this.room.room_half_size_m ?? 4) + 1;
+    return this.room.room_half_size_m + 1;
   }
 
   status() {
