@@ -18,6 +18,7 @@ import sys
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
+from services.core.settings import CoreSettings
 from services.launch.errors import LaunchError
 from services.launch.spec import LaunchSpec, NodeSpec
 from sim_server.robot.limits import MAX_ROBOTS  # constants only: no PyBullet
@@ -32,11 +33,9 @@ __all__ = [
 ]
 
 DEFAULT_BASE_PORT = 8000
-# The core's protocol endpoints: flag, LaunchOptions field, the core's variable, its default.
-_ENDPOINTS = (
-    ("--rosbridge-port", "rosbridge_port", "SKYDECK_ROSBRIDGE_PORT", 9090),
-    ("--foxglove-port", "foxglove_port", "SKYDECK_FOXGLOVE_PORT", 8765),
-)
+# The core's protocol endpoints: the flag of `skydeck core`, and the field of both LaunchOptions
+# and CoreSettings (which holds the defaults and reads SKYDECK_<FIELD>).
+_ENDPOINTS = (("--rosbridge-port", "rosbridge_port"), ("--foxglove-port", "foxglove_port"))
 _MAX_SEED = 2**32 - 1
 # The simulator's default (sim_server.limits.DEFAULT_BOXES, pinned by a test): importing
 # sim_server would load PyBullet into the launcher, which never simulates anything.
@@ -93,11 +92,11 @@ class LaunchOptions:
         """The ports the core's protocol endpoints will listen on (those that are on), by the
         flag that sets each: the option, else the core's ``SKYDECK_*`` setting in ``environ``."""
         ports = {}
-        for flag, given, variable, default in _ENDPOINTS:
-            port = getattr(self, given)
+        for flag, setting in _ENDPOINTS:
+            port = getattr(self, setting)
             if port is None:
-                text = environ.get(variable, "")
-                port = int(text) if text.isdigit() else default
+                text = environ.get(CoreSettings.model_config["env_prefix"] + setting.upper(), "")
+                port = int(text) if text.isdigit() else CoreSettings.model_fields[setting].default
             if port:
                 ports[flag] = port
         return ports
@@ -164,14 +163,15 @@ def plan_launch(spec: LaunchSpec, options: LaunchOptions) -> tuple[NodePlan, ...
     nodes = [node for node in spec.nodes if node.name not in options.exclude]
     nodes.sort(key=lambda node: not node.is_core)  # stable: the core first, the rest as listed
     plans = [_plan(node, options.base_port, values) for node in nodes]
-    # The core's endpoint ports, when given, go in its environment (its settings read SKYDECK_*).
-    endpoints = {
-        variable: str(getattr(options, given))
-        for _, given, variable, _ in _ENDPOINTS
-        if getattr(options, given) is not None
-    }
+    # The core's endpoint ports, when given, are its flags, as `skydeck core` takes them.
+    endpoints = tuple(
+        word
+        for flag, setting in _ENDPOINTS
+        if getattr(options, setting) is not None
+        for word in (flag, str(getattr(options, setting)))
+    )
     return tuple(
-        dataclasses.replace(plan, env={**endpoints, **plan.env}) if plan.is_core and endpoints else plan for plan in plans
+        dataclasses.replace(plan, args=(*plan.args, *endpoints)) if plan.is_core and endpoints else plan for plan in plans
     )
 
 

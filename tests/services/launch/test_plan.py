@@ -173,3 +173,13 @@ def test_public_api() -> None:
     )
     for name in services.launch.__all__:
         assert getattr(services.launch, name) is not None
+
+
+def test_endpoint_ports_reach_the_core_as_its_flags() -> None:
+    spec = load_launch_file(default_launch_file())
+    core, *nodes = plan_launch(spec, LaunchOptions(seed=1, rosbridge_port=0, foxglove_port=9876))
+    assert core.args[-4:] == ("--rosbridge-port", "0", "--foxglove-port", "9876")
+    assert core.env == {} and all("--rosbridge-port" not in node.args for node in nodes)
+    default_core, *_ = plan_launch(spec, LaunchOptions(seed=1))
+    assert "--rosbridge-port" not in default_core.args  # the core's own setting decides
+
