@@ -5,8 +5,10 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import os
+import time
 from collections.abc import AsyncIterator, Awaitable, Callable
 
+import httpx
 import pytest
 import uvicorn
 
@@ -35,6 +37,26 @@ async def wait_until(predicate: Callable[[], bool], timeout_s: float = 5.0, what
                 await asyncio.sleep(0.01)
     except TimeoutError:
         raise AssertionError(f"timed out after {timeout_s} s waiting for {what}") from None
+
+
+def registered_nodes(core_url: str, names: set[str], timeout_s: float) -> dict[str, str]:
+    """Node name -> URL from the core's graph once every one of ``names`` is registered; fails
+    after ``timeout_s`` naming the missing ones. For processes the harness started (a thread)."""
+    deadline = time.monotonic() + timeout_s
+    nodes: dict[str, str] = {}
+    while True:
+        with contextlib.suppress(httpx.HTTPError):
+            nodes = {n["name"]: n["url"] for n in httpx.get(core_url + "/api/graph", timeout=5).json()["nodes"]}
+        if names <= nodes.keys():
+            return nodes
+        if time.monotonic() > deadline:
+            raise AssertionError(f"not registered after {timeout_s:g} s: {sorted(names - nodes.keys())}")
+        time.sleep(0.05)
+
+
+async def await_registered(core_url: str, names: set[str], timeout_s: float) -> dict[str, str]:
+    """:func:`registered_nodes` from a coroutine (waits in a thread, the loop runs on)."""
+    return await asyncio.to_thread(registered_nodes, core_url, names, timeout_s)
 
 
 class CoreProcess:

@@ -38,6 +38,7 @@ from services.ai.landing import LANDING_POLICIES, LandingPolicy, finishing_legs
 from services.ai.planner import plan_tour
 from services.bench.processes import Worker
 from services.bench.sink import emit
+from services.launch.background import BackgroundProcess
 from sim_server.limits import MAX_SPEED_XY, MAX_SPEED_Z, ON_GROUND_Z_M, PHYSICS_HZ, START_XY_M
 
 __all__ = [
@@ -196,14 +197,15 @@ async def _fly_one(seed: int, boxes: int, state_dir: str) -> dict[str, Any]:
     cli = [sys.executable, "-m", "services.cli"]
     launch = [*cli, "launch", "--base-port", str(base), "--speed", _FLIGHT_SPEED, "--seed", str(seed),
               "--boxes", str(boxes), "--exclude", "ai"]  # fmt: skip
-    processes = [await _spawn(launch, env)]
+    processes = [BackgroundProcess(launch, name="launch", env=env)]
     try:
         async with httpx.AsyncClient(timeout=2.0) as http, asyncio.timeout(_FLIGHT_TIMEOUT_S):
             polygon = await _latest(http, core + "/perception/boxes", lambda m: len(m["points"]) == boxes)
             track = GroundTrack([(p["x"], p["y"]) for p in polygon["points"]])
             async with connect(stream_url(sim, "/drone/pose", queue=10_000), max_size=None) as poses:
                 # The AI starts only now, so the track is read from before its take-off.
-                processes.append(await _spawn([*cli, "run", "ai", "--port", str(base + 4), "--use-sim-time"], env))
+                ai = [*cli, "run", "ai", "--port", str(base + 4), "--use-sim-time"]
+                processes.append(BackgroundProcess(ai, name="ai", env=env))
                 reader = asyncio.create_task(_read_poses(poses, track))
                 try:
                     status = await _latest(http, core + "/ai/status", lambda m: m["state"] in ("done", "error"))
@@ -215,7 +217,7 @@ async def _fly_one(seed: int, boxes: int, state_dir: str) -> dict[str, Any]:
                     reader.cancel()
     finally:
         for process in reversed(processes):
-            await _stop(process)
+            await asyncio.to_thread(process.stop, signal.SIGINT, 20.0)
     optimum = optimal_flight_m(START_XY_M, track.boxes, "beside_last_box")
     return {
         "seed": seed,
@@ -234,22 +236,6 @@ async def _fly_one(seed: int, boxes: int, state_dir: str) -> dict[str, Any]:
 async def _read_poses(poses: Any, track: GroundTrack) -> None:
     async for frame in poses:
         track.add(json.loads(frame))
-
-
-async def _spawn(argv: list[str], env: dict[str, str]) -> asyncio.subprocess.Process:
-    return await asyncio.create_subprocess_exec(
-        *argv, env=env, stdout=asyncio.subprocess.DEVNULL, stderr=asyncio.subprocess.DEVNULL, start_new_session=True
-    )
-
-
-async def _stop(process: asyncio.subprocess.Process) -> None:
-    if process.returncode is None:
-        os.killpg(process.pid, signal.SIGINT)
-        try:
-            await asyncio.wait_for(process.wait(), 20)
-        except TimeoutError:
-            os.killpg(process.pid, signal.SIGKILL)
-            await process.wait()
 
 
 async def _latest(http: Any, url: str, ready: Any) -> dict[str, Any]:

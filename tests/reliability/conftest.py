@@ -7,13 +7,13 @@
 
 from __future__ import annotations
 
-import time
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 import httpx
 import pytest
 
+from tests.conftest import registered_nodes
 from tests.e2e.conftest import LaunchedSystem, launch, start_launch, stop_launch
 
 __all__ = ["LaunchedSystem", "Workshop", "launch", "workshop"]
@@ -43,20 +43,8 @@ def workshop(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Workshop]:
     )
     try:
         process.wait_for_line("[launch] all", timeout_s=60)
-        nodes = _registered(core_url, {"/sim", "/perception", "/control", "/ai"}, timeout_s=10)
+        nodes = registered_nodes(core_url, {"/sim", "/perception", "/control", "/ai"}, timeout_s=10)
         yield Workshop(core_url, nodes, process.lines)
     finally:
         # Whatever the tests sent, the system stops cleanly and no process printed a traceback.
         stop_launch(process)
-
-
-def _registered(core_url: str, names: set[str], timeout_s: float) -> dict[str, str]:
-    """Node name -> URL once every one of ``names`` is registered; fails after ``timeout_s``."""
-    deadline = time.monotonic() + timeout_s
-    while True:
-        nodes = {n["name"]: n["url"] for n in httpx.get(core_url + "/api/graph", timeout=5).json()["nodes"]}
-        if names <= nodes.keys():
-            return nodes
-        if time.monotonic() > deadline:
-            raise AssertionError(f"not registered after {timeout_s:g} s: {sorted(names - nodes.keys())}")
-        time.sleep(0.1)

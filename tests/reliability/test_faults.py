@@ -19,6 +19,7 @@ from websockets.asyncio.client import connect
 from websockets.exceptions import ConnectionClosed, InvalidHandshake
 
 from services.runtime.edge.links import stream_url
+from tests.conftest import await_registered
 from tests.reliability.conftest import LaunchedSystem
 
 pytestmark = [pytest.mark.e2e, pytest.mark.timeout(150)]
@@ -59,18 +60,8 @@ async def _kill_and_wait_respawn(system: LaunchedSystem, name: str) -> None:
     os.kill(pid, signal.SIGKILL)
     await system.wait_for_line(f"[launch] {name} exited", timeout_s=20, after=mark)
     await system.wait_for_line(f"[launch] {name} ready", timeout_s=40, after=mark)
-    await _wait_registered(system, {"/" + name}, timeout_s=10)
+    await await_registered(system.core_url, {"/" + name}, timeout_s=10)
     assert await _pid(system, "/" + name) != pid
-
-
-async def _wait_registered(system: LaunchedSystem, names: set[str], timeout_s: float) -> None:
-    async with asyncio.timeout(timeout_s):
-        while True:
-            with contextlib.suppress(httpx.HTTPError):
-                graph = await system.graph()
-                if names <= {n["name"] for n in graph["nodes"]}:
-                    return
-            await asyncio.sleep(0.1)
 
 
 def _assert_every_box_once(status: dict, boxes: int = 8) -> None:
@@ -87,6 +78,15 @@ async def _collect(url: str, topic: str, into: list[dict], **query: object) -> N
                 async for frame in websocket:
                     into.append(json.loads(frame))
         await asyncio.sleep(0.1)
+
+
+def _stop_readers(readers: list[asyncio.Task[None]]) -> None:
+    """Cancel the collectors; one that already ended crashed (they only end when cancelled), and
+    its error, not a later wait's timeout, is the test's failure."""
+    for reader in readers:
+        if reader.done():
+            reader.result()
+        reader.cancel()
 
 
 async def _until(messages: list[dict], predicate: Callable[[dict], bool], timeout_s: float, what: str) -> dict:
@@ -156,11 +156,11 @@ async def test_killed_core_respawns_streams_flow_meanwhile_and_nodes_register_ag
                 assert waiting["state"] == "landing", waiting
             await system.wait_for_line("[launch] core ready", timeout_s=60, after=mark)
             # ...every node registers again by itself once the core is back...
-            await _wait_registered(system, NODES, timeout_s=30)
+            await await_registered(system.core_url, NODES, timeout_s=30)
             # ...and the mission, which went on meanwhile, lands and completes with every box once.
             status = await _until(statuses, lambda m: m["state"] in ("done", "error"), 90, "the mission to end")
         finally:
-            reader.cancel()
+            _stop_readers([reader])
         _assert_every_box_once(status)
         assert len(status["visited"]) == 8
 
@@ -194,7 +194,7 @@ async def test_killed_sim_is_noticed_reported_and_the_mission_restarts_after_a_r
                 await _until(statuses, lambda m: "simulator not publishing" in m["message"], 20, "the AI's status")
                 await _until(controls, lambda m: "no drone pose" in m["message"], 20, "control's status")
             await system.wait_for_line("[launch] sim ready", timeout_s=40, after=mark)
-            await _wait_registered(system, {"/sim"}, timeout_s=10)
+            await await_registered(system.core_url, {"/sim"}, timeout_s=10)
             # The restarted simulator built a new world: the AI starts a new tour by itself, and
             # a reset (a newer world still) starts another, without /ai/start.
             await system.wait_for_line("the simulator built a new world", timeout_s=20, after=mark)
@@ -204,8 +204,7 @@ async def test_killed_sim_is_noticed_reported_and_the_mission_restarts_after_a_r
             # A fresh mission for the new world: it starts from no visited box and ends with all 8.
             status = await system.messages("/ai/status", lambda m: m["state"] in ("done", "error"), 120)
         finally:
-            for reader in readers:
-                reader.cancel()
+            _stop_readers(readers)
         new_boxes = (await system.messages("/perception/boxes", lambda m: True, 10))["points"]
         assert [(round(p["x"]), round(p["y"])) for p in new_boxes] != [(round(p["x"]), round(p["y"])) for p in old_boxes]
         world = (await system.messages("/simulator/world", lambda m: True, 10))["id"]

@@ -11,8 +11,8 @@ import contextlib
 import json
 import logging
 import os
+import signal
 import socket
-import subprocess
 import sys
 import urllib.error
 import urllib.request
@@ -25,6 +25,7 @@ from websockets.exceptions import ConnectionClosed, InvalidStatus
 
 import services.runtime.auth as auth
 from services.core.settings import CoreSettings
+from services.launch.background import BackgroundProcess
 from services.runtime import Node, NodeSettings
 from services.runtime.edge.links import stream_url
 from services.runtime.protocol import NodeDescription, RegisterFrame
@@ -134,27 +135,17 @@ def test_cli_core_and_node_without_host_listen_on_loopback_only() -> None:
         core_port: ["core", "--port", str(core_port), "--rosbridge-port", "0", "--foxglove-port", "0"],
         node_port: ["run", "control", "--port", str(node_port)],
     }
-    processes = [
-        subprocess.Popen([sys.executable, "-m", "services.cli", *argv], env=env,
-                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        for argv in commands.values()
-    ]
+    processes = {
+        port: BackgroundProcess([sys.executable, "-m", "services.cli", *argv], name=argv[0], env=env)
+        for port, argv in commands.items()
+    }
     try:
-        for port in commands:
-            for _ in range(300):
-                try:
-                    if httpx.get(f"http://127.0.0.1:{port}/health", timeout=1).status_code == 200:
-                        break
-                except httpx.HTTPError:
-                    pass
-                asyncio.run(asyncio.sleep(0.05))
-            else:
-                raise AssertionError(f"nothing answered /health on port {port}")
+        for port, process in processes.items():
+            process.wait_healthy(f"http://127.0.0.1:{port}/health", timeout_s=15)
             assert _listening_addresses(port) == {"127.0.0.1"}, port
     finally:
-        for process in processes:
-            process.terminate()
-            process.wait(10)
+        for process in processes.values():
+            process.stop(signal.SIGTERM)
 
 
 # -- the token ------------------------------------------------------------------------------------

@@ -7,10 +7,9 @@ from __future__ import annotations
 
 import asyncio
 import base64
-import contextlib
 import json
 import os
-import subprocess
+import signal
 import sys
 from collections.abc import AsyncIterator
 from pathlib import Path
@@ -19,11 +18,12 @@ import httpx
 import pytest
 from websockets.asyncio.client import connect
 
+from services.launch.background import BackgroundProcess
 from services.runtime import Node, NodeSettings
 from services.runtime.edge.links import stream_url
 from shared_models.std_msgs import Int32
 from shared_models.std_srvs import Trigger, TriggerResponse
-from tests.conftest import CoreProcess, free_port, wait_until
+from tests.conftest import CoreProcess, await_registered, free_port, wait_until
 
 FLOOD_NODE = Path(__file__).with_name("flood_node.py")
 
@@ -101,25 +101,16 @@ async def test_core_reaps_vanished_gateway_readers() -> None:
     and with the last reader gone the core closes its link to the publisher."""
     port = free_port()
     env = {**os.environ, "SKYDECK_PING_INTERVAL_S": "0.2", "SKYDECK_PING_TIMEOUT_S": "0.3"}
-    core = subprocess.Popen(
+    core = BackgroundProcess(
         [sys.executable, "-m", "services.cli", "core", "--port", str(port), "--rosbridge-port", "0", "--foxglove-port", "0"],
-        env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+        name="core", env=env,
     )
     core_url = f"http://127.0.0.1:{port}"
     node = Talker(NodeSettings(core_url=core_url, port=0, ping_interval_s=3600, ping_timeout_s=3600))
     try:
+        await asyncio.to_thread(core.wait_healthy, core_url + "/health", 20)
         await node.start()
-        async with httpx.AsyncClient() as http:
-
-            async def registered() -> bool:
-                with contextlib.suppress(httpx.HTTPError):
-                    graph = (await http.get(core_url + "/api/graph", timeout=1)).json()
-                    return any(n["name"] == "/talker" for n in graph["nodes"])
-                return False
-
-            async with asyncio.timeout(20):
-                while not await registered():
-                    await asyncio.sleep(0.05)
+        await await_registered(core_url, {"/talker"}, timeout_s=20)
         outboxes = node._participant.endpoints["/count"].outboxes
         writer = await _vanishing_client(port, "/count")
         try:
@@ -129,8 +120,7 @@ async def test_core_reaps_vanished_gateway_readers() -> None:
             writer.close()
     finally:
         await node.stop()
-        core.terminate()
-        core.wait(10)
+        core.stop(signal.SIGTERM)
 
 
 def _rss_bytes(pid: int) -> int:
@@ -149,20 +139,13 @@ async def test_flood_of_publishers_and_stalled_readers_keeps_memory_bounded() ->
     40,000 frames x 20 readers (~800 MB); the outboxes hold at most 100 each."""
     port = free_port()
     env = {**os.environ, "SKYDECK_CORE_URL": f"http://127.0.0.1:{free_port()}"}
-    process = subprocess.Popen(
-        [sys.executable, "-m", "services.cli", "run", str(FLOOD_NODE), "--port", str(port)],
-        env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+    process = BackgroundProcess(
+        [sys.executable, "-m", "services.cli", "run", str(FLOOD_NODE), "--port", str(port)], name="flood node", env=env
     )
     url = f"http://127.0.0.1:{port}"
     stalled: list[asyncio.StreamWriter] = []
     try:
-        async with httpx.AsyncClient() as http:
-            async with asyncio.timeout(20):
-                while True:
-                    with contextlib.suppress(httpx.HTTPError):
-                        if (await http.get(url + "/health", timeout=1)).status_code == 200:
-                            break
-                    await asyncio.sleep(0.05)
+        await asyncio.to_thread(process.wait_healthy, url + "/health", 20)
         stalled = [await _vanishing_client(port, "/flood/out") for _ in range(20)]
         payload = "x" * 1024
         publishers, frames_each = 20, 2000
@@ -197,8 +180,7 @@ async def test_flood_of_publishers_and_stalled_readers_keeps_memory_bounded() ->
     finally:
         for writer in stalled:
             writer.close()
-        process.terminate()
-        process.wait(10)
+        process.stop(signal.SIGTERM)
 
 
 async def test_hung_handlers_time_out_at_the_gateway_and_do_not_block_others() -> None:

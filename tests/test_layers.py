@@ -1,0 +1,37 @@
+"""Imports run downward only: the lower layers never load the ones built on them.
+
+shared_models (messages, names, errors) <- services.runtime (the SDK) <- services.core and the
+nodes <- services.launch <- services.cli. A module that imported upward would tie a layer to
+the one above it (the launcher to the CLI, the app to the node it is part of).
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+pytestmark = pytest.mark.timeout(60)
+
+# module imported -> packages or modules it must not load
+LAYERS = {
+    "shared_models.catalogue": ("services", "sim_server"),
+    "services.runtime": ("services.core", "services.launch", "services.cli", "services.ros"),
+    "services.runtime.app": ("services.runtime.node",),
+    "services.core.app": ("services.launch", "services.cli"),
+    "services.launch.supervisor": ("services.cli",),
+    "services.launch.plan": ("services.cli",),
+    "sim_server.node": ("services.cli", "services.launch", "services.core"),
+}
+
+
+@pytest.mark.parametrize("module", list(LAYERS))
+def test_a_layer_never_loads_the_layers_above_it(module: str) -> None:
+    forbidden = LAYERS[module]
+    code = (
+        f"import importlib, sys; importlib.import_module({module!r}); "
+        f"print(','.join(sorted(m for m in sys.modules for f in {forbidden!r} if m == f or m.startswith(f + '.'))))"
+    )
+    loaded = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, timeout=50)
+    assert loaded.stdout.strip() == "", f"importing {module} loads {loaded.stdout.strip()}"
