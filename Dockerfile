@@ -1,5 +1,6 @@
-# One image for every Skydeck process: `skydeck core` and `skydeck run sim|perception|control|ai`.
-# docker-compose.yml runs one container of it per process; see README "Run with Docker".
+# One image for every Skydeck process: `skydeck core` and `skydeck run NODE` (either world).
+# docker-compose.yml runs one container of it per process, the drone workshop; with
+# docker-compose.robot.yml beside it, the robot world; see README "Run with Docker".
 #
 # Stages:
 #   web-vendor  npm ci of web_ui/vendor (Swagger UI for the core's /docs, three.js for the
@@ -8,6 +9,7 @@
 #               (hash-checked), then the project itself as a wheel (no editable install)
 #               and the Swagger UI and three.js files inside the installed web_ui package
 #   final       python slim + that venv, a non-root user; no node, npm, pip, setuptools or compilers
+#               (the base image's own pip, setuptools and wheel are removed too)
 #
 # Layer order: lock files first, sources last, so a code change rebuilds only the last layers.
 
@@ -56,8 +58,9 @@ RUN web_ui="$(/opt/skydeck/bin/python -I -c 'import pathlib, web_ui; print(pathl
     && mv /tmp/swagger-ui-dist "$web_ui/vendor/node_modules/swagger-ui-dist" \
     && mv /tmp/three "$web_ui/vendor/node_modules/three" \
     && /opt/skydeck/bin/python -m pip uninstall --yes setuptools pip
-# Fail the build, not the first `docker compose up`, if a process cannot even import.
-RUN cd / && /opt/skydeck/bin/python -I -c "import services.core.app, sim_server.node, services.perception.node, services.control.node, services.ai.node" \
+# Fail the build, not the first `docker compose up`, if a process cannot even import: the core
+# (with its rosbridge and Foxglove endpoints), both worlds and every node `skydeck run` knows.
+RUN cd / && /opt/skydeck/bin/python -I -c "import importlib, services.core.app, services.core.protocols.servers, sim_server.robot.node; from services.builtin_nodes import BUILTIN_NODES; [importlib.import_module(module) for module in BUILTIN_NODES.values()]" \
     && /opt/skydeck/bin/skydeck run --help >/dev/null
 
 # -- final: the runtime image -------------------------------------------------------------------
@@ -67,11 +70,14 @@ ENV PATH=/opt/skydeck/bin:$PATH \
     PYTHONDONTWRITEBYTECODE=1 \
     SKYDECK_HOST=0.0.0.0 \
     SKYDECK_STATE_DIR=/var/lib/skydeck
-RUN useradd --system --uid 10001 --user-group --create-home --home-dir /home/skydeck skydeck \
+# The base image's own Python ships the packaging tools; the processes never install anything.
+RUN /usr/local/bin/python -m pip uninstall --yes --quiet pip setuptools wheel \
+    && useradd --system --uid 10001 --user-group --create-home --home-dir /home/skydeck skydeck \
     && mkdir -p /var/lib/skydeck \
     && chown skydeck:skydeck /var/lib/skydeck
 COPY --from=build /opt/skydeck /opt/skydeck
 USER skydeck
 WORKDIR /home/skydeck
-EXPOSE 8000 8001 8002 8003 8004
+# The core, the nodes, and the core's rosbridge and Foxglove endpoints.
+EXPOSE 8000 8001 8002 8003 8004 9090 8765
 CMD ["skydeck", "core", "--host", "0.0.0.0"]

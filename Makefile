@@ -25,13 +25,14 @@ robot: install
 	$(BIN)/skydeck launch robot
 
 # System packages the tests drive for real: Debian's Chromium (browser tests), the
-# docker-compose tool (validates docker-compose.yml without an engine) and zsh (completion).
+# docker-compose tool (validates the compose files without an engine) and zsh (completion).
 test-deps:
 	@command -v chromium >/dev/null && command -v docker-compose >/dev/null && command -v zsh >/dev/null || \
 		{ apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium docker-compose zsh >/dev/null; }
 
 test: install test-deps
 	docker-compose -f docker-compose.yml config --quiet
+	docker-compose -f docker-compose.yml -f docker-compose.robot.yml config --quiet
 	$(BIN)/python -m pytest -q
 
 lint: install

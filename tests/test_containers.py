@@ -1,19 +1,23 @@
-"""The container files: docker-compose.yml, the Dockerfile and requirements-runtime.lock.
+"""The container files: docker-compose.yml, docker-compose.robot.yml, the Dockerfile and
+requirements-runtime.lock.
 
-No Docker engine runs here, so the compose file is made correct by construction: the
-distribution's ``docker-compose config`` validates it (no engine needed), and these tests check
-its structure and that every service's command is one the real CLI, and the node it runs, accept.
+No Docker engine runs here, so the compose files are made correct by construction: the
+distribution's ``docker-compose config`` validates and resolves both documented commands (the
+drone workshop, and the robot world with docker-compose.robot.yml beside it; no engine needed),
+and these tests check their structure and that every service's command is one the real CLI, and
+the node it runs, accept. tests/test_containers_run.py runs those commands as the containers would.
 """
 
 from __future__ import annotations
 
 import argparse
 import importlib
-import os
 import re
 import shutil
 import subprocess
+import sys
 import tomllib
+import zipfile
 from pathlib import Path
 from typing import Any
 
@@ -22,16 +26,30 @@ import yaml
 
 from services.builtin_nodes import BUILTIN_NODES
 from services.cli.main import build_parser
+from services.core.protocols.servers import bind_endpoints
+from services.core.settings import CoreSettings
+from services.launch.plan import LaunchOptions, plan_launch
+from services.launch.spec import find_launch_file, load_launch_file
+from services.runtime.ports import free_port_block
 from sim_server.node import SimSettings
-
-ROOT = Path(__file__).resolve().parents[1]
-COMPOSE_FILE = ROOT / "docker-compose.yml"
-DOCKERFILE = ROOT / "Dockerfile"
+from tests.compose_config import (
+    COMPOSE_FILE,
+    DOCKERFILE,
+    ROOT,
+    VARIANTS,
+    container_port,
+    health_url,
+    published_ports,
+    resolve,
+    started_services,
+)
 
 # The processes and their ports, as in the design's table (and `skydeck launch`).
 PORTS = {"core": 8000, "sim": 8001, "perception": 8002, "control": 8003, "ai": 8004}
 SIM_TIME_NODES = {"control", "ai"}  # they follow /clock, as in services/launch/workshop.yaml
 CORE_URL = "http://core:8000"
+# Each compose command runs what a shipped launch file runs.
+LAUNCH_FILE = {"drone": "workshop", "robot": "robot"}
 # requirements-runtime.lock is made from pyproject.toml, pinned to requirements.lock.
 REGENERATE_RUNTIME_LOCK = (
     ".venv/bin/uv pip compile pyproject.toml -c requirements.lock"
@@ -49,6 +67,17 @@ def services(compose: dict[str, Any]) -> dict[str, dict[str, Any]]:
     return compose["services"]
 
 
+@pytest.fixture(scope="module", params=list(VARIANTS))
+def variant(request: pytest.FixtureRequest) -> str:
+    return str(request.param)
+
+
+@pytest.fixture(scope="module")
+def started(variant: str) -> dict[str, dict[str, Any]]:
+    """What the variant's ``up`` starts, resolved by the real tool with a token set."""
+    return started_services(resolve(variant, env={"SKYDECK_TOKEN": "t0ken"}))
+
+
 def _parse(argv: list[str]) -> tuple[argparse.Namespace, list[str]]:
     """``skydeck ARGV`` through the real parser; argparse errors become test failures."""
     try:
@@ -63,7 +92,7 @@ def _command(service: dict[str, Any]) -> tuple[argparse.Namespace, list[str]]:
         "commands are exec-form lists: no shell, signals reach skydeck"
     )
     assert command[0] == "skydeck"
-    return _parse([str(word) for word in command[1:]])
+    return _parse([_interpolate_defaults(str(word)) for word in command[1:]])
 
 
 def _interpolate_defaults(value: str) -> str:
@@ -71,33 +100,19 @@ def _interpolate_defaults(value: str) -> str:
     return re.sub(r"\$\{\w+:-([^}]*)\}", r"\1", value)
 
 
+def _flag(command: list[Any], flag: str) -> str | None:
+    words = [str(word) for word in command]
+    return words[words.index(flag) + 1] if flag in words else None
+
+
 # -- the compose tool ---------------------------------------------------------------------------
 
 
-def _docker_compose(
-    *args: str, env: dict[str, str] | None = None
-) -> subprocess.CompletedProcess[str]:
-    tool = shutil.which("docker-compose")
-    if tool is None:
-        pytest.skip("docker-compose is not installed (`make test-deps` installs Debian's package)")
-    return subprocess.run(
-        [tool, "-f", str(COMPOSE_FILE), *args],
-        cwd=ROOT,
-        env={**os.environ, **(env or {})},
-        capture_output=True,
-        text=True,
-        timeout=30,
-        check=False,
-    )
-
-
 def test_docker_compose_config_accepts_the_file() -> None:
-    result = _docker_compose("config")
-    assert result.returncode == 0, result.stderr
-    resolved = yaml.safe_load(result.stdout)
+    resolved = resolve("drone")
     assert set(resolved["services"]) == set(PORTS)
-    sim_env = resolved["services"]["sim"]["environment"]
-    assert sim_env["SKYDECK_SIM_SPEED"] == "1" and sim_env["SKYDECK_SIM_BOXES"] == "8"
+    sim = resolved["services"]["sim"]
+    assert sim["environment"]["SKYDECK_SIM_SPEED"] == "1" and _flag(sim["command"], "--boxes") == "8"
 
 
 def test_environment_reaches_the_services() -> None:
@@ -107,17 +122,102 @@ def test_environment_reaches_the_services() -> None:
         "SKYDECK_SIM_SEED": "7",
         "SKYDECK_SIM_BOXES": "3",
     }
-    result = _docker_compose("config", env=env)
-    assert result.returncode == 0, result.stderr
-    resolved = yaml.safe_load(result.stdout)["services"]
+    resolved = resolve("drone", env=env)["services"]
     for name, service in resolved.items():
         assert service["environment"]["SKYDECK_TOKEN"] == "t0ken", name
-    sim_env = resolved["sim"]["environment"]
-    assert (
-        sim_env["SKYDECK_SIM_SPEED"],
-        sim_env["SKYDECK_SIM_SEED"],
-        sim_env["SKYDECK_SIM_BOXES"],
-    ) == ("max", "7", "3")
+    sim = resolved["sim"]
+    assert (sim["environment"]["SKYDECK_SIM_SPEED"], sim["environment"]["SKYDECK_SIM_SEED"]) == ("max", "7")
+    assert _flag(sim["command"], "--boxes") == "3"
+
+
+def test_the_robot_worlds_settings_reach_its_simulator() -> None:
+    env = {"SKYDECK_SIM_SPEED": "max", "SKYDECK_SIM_SEED": "7", "SKYDECK_SIM_ROBOTS": "2",
+           "SKYDECK_SIM_OBSTACLES": "3", "SKYDECK_SIM_BOXES": "5"}  # fmt: skip
+    sim = resolve("robot", env=env)["services"]["sim"]
+    assert _flag(sim["command"], "--world") == "robot"
+    assert _flag(sim["command"], "--boxes") is None, "the robot world refuses --boxes"
+    sim_env = {key: value for key, value in sim["environment"].items() if key.startswith("SKYDECK_SIM_")}
+    assert sim_env == {"SKYDECK_SIM_SPEED": "max", "SKYDECK_SIM_SEED": "7", "SKYDECK_SIM_ROBOTS": "2",
+                       "SKYDECK_SIM_OBSTACLES": "3"}  # fmt: skip
+    settings = {key.removeprefix("SKYDECK_SIM_").lower(): value for key, value in sim_env.items()}
+    SimSettings.model_validate({"world": "robot", **settings})  # values the robot world takes
+
+
+# -- both commands, resolved --------------------------------------------------------------------
+
+
+def test_each_command_starts_what_its_launch_file_starts(
+    variant: str, started: dict[str, dict[str, Any]]
+) -> None:
+    spec = load_launch_file(find_launch_file(LAUNCH_FILE[variant]))
+    plans = plan_launch(spec, LaunchOptions(seed=1))
+    assert set(started) == {plan.name for plan in plans}, "nor the other world's nodes"
+    for plan in plans:
+        service = started[plan.name]
+        assert container_port(service) == plan.port, plan.name
+        assert _flag(service["command"], "--world") == _flag(list(plan.args), "--world"), plan.name
+        assert ("--use-sim-time" in service["command"]) is ("--use-sim-time" in plan.args), plan.name
+    assert {service["image"] for service in started.values()} == {"skydeck:local"}, "one image"
+
+
+def test_published_ports_are_the_cores_on_loopback(started: dict[str, dict[str, Any]]) -> None:
+    # The core's own, and its rosbridge and Foxglove endpoints (CoreSettings' defaults).
+    expected = {"127.0.0.1:8000:8000", "127.0.0.1:9090:9090", "127.0.0.1:8765:8765"}
+    assert sorted(published_ports(started["core"])) == sorted(expected)  # an override may reorder them
+    for name, service in started.items():
+        if name != "core":
+            assert published_ports(service) == [], f"{name} is reached through the core, not published"
+
+
+def test_every_started_service_is_healthchecked_after_a_healthy_core(started: dict[str, dict[str, Any]]) -> None:
+    for name, service in started.items():
+        assert health_url(service) == f"http://127.0.0.1:{container_port(service)}/health", name
+        compile(service["healthcheck"]["test"][3], f"{name} healthcheck", "exec")  # valid Python
+        assert service["restart"] == "unless-stopped", name
+        if name == "core":
+            assert "depends_on" not in service
+        else:
+            assert service["depends_on"] == {"core": {"condition": "service_healthy"}}, name
+            args, _ = _command(service)
+            assert (args.core_url, args.advertise_url) == (CORE_URL, f"http://{name}:{container_port(service)}")
+
+
+def test_the_token_reaches_every_started_service(started: dict[str, dict[str, Any]]) -> None:
+    # The core's rosbridge and Foxglove endpoints check it in the core's process.
+    for name, service in started.items():
+        assert service["environment"]["SKYDECK_TOKEN"] == "t0ken", name
+
+
+def test_the_cores_endpoints_listen_where_the_core_does(started: dict[str, dict[str, Any]]) -> None:
+    # Published container ports reach only sockets on the container's every interface: the core's
+    # --host (0.0.0.0) must be the endpoints' too. Bound on free ports, and closed, never served.
+    args, _ = _command(started["core"])
+    base = free_port_block(2)
+    settings = CoreSettings(host=args.host, port=0, rosbridge_port=base, foxglove_port=base + 1)
+    sockets = bind_endpoints(settings)
+    try:
+        assert {name: sock.getsockname()[0] for name, sock in sockets.items()} == {
+            "rosbridge": "0.0.0.0",
+            "foxglove": "0.0.0.0",
+        }
+    finally:
+        for sock in sockets.values():
+            sock.close()
+
+
+def test_the_robot_simulators_command_is_one_it_accepts(monkeypatch: pytest.MonkeyPatch) -> None:
+    sim = resolve("robot")["services"]["sim"]
+    args, extra = _command(sim)
+    assert (args.command, args.node, args.host) == ("run", "sim", "0.0.0.0")
+    _assert_node_accepts("sim", extra, monkeypatch)
+
+
+def test_the_readme_shows_each_command_on_one_line() -> None:
+    readme = (ROOT / "README.md").read_text()
+    for files in VARIANTS.values():
+        flags = [word for path in files for word in ("-f", path.name)] if len(files) > 1 else []
+        command = " ".join(["docker", "compose", *flags, "up"])
+        assert re.search(rf"^{re.escape(command)}(\s+#.*)?$", readme, re.MULTILINE), f"README shows `{command}`"
 
 
 # -- structure ----------------------------------------------------------------------------------
@@ -129,34 +229,6 @@ def test_the_five_processes_from_one_image(services: dict[str, dict[str, Any]]) 
     assert {str(service["build"]) for service in services.values()} == {"."}
     for name, service in services.items():
         assert service["restart"] == "unless-stopped", name
-
-
-def test_only_the_core_ports_are_published(services: dict[str, dict[str, Any]]) -> None:
-    # The core's own, and its rosbridge and Foxglove endpoints (CoreSettings' defaults).
-    assert services["core"]["ports"] == ["127.0.0.1:8000:8000", "127.0.0.1:9090:9090", "127.0.0.1:8765:8765"]
-    for name, service in services.items():
-        if name != "core":
-            assert "ports" not in service, f"{name} is reached through the core, not published"
-
-
-def test_every_service_checks_its_own_health(services: dict[str, dict[str, Any]]) -> None:
-    for name, service in services.items():
-        test = service["healthcheck"]["test"]
-        assert test[:3] == ["CMD", "python", "-c"], name
-        assert f"'http://127.0.0.1:{PORTS[name]}/health'" in test[3], name
-        compile(test[3], f"{name} healthcheck", "exec")  # it is valid Python
-
-
-def test_nodes_wait_for_a_healthy_core(services: dict[str, dict[str, Any]]) -> None:
-    assert "depends_on" not in services["core"]
-    for name, service in services.items():
-        if name != "core":
-            assert service["depends_on"] == {"core": {"condition": "service_healthy"}}, name
-
-
-def test_the_token_is_passed_to_every_service(services: dict[str, dict[str, Any]]) -> None:
-    for name, service in services.items():
-        assert service["environment"]["SKYDECK_TOKEN"] == "${SKYDECK_TOKEN:-}", name
 
 
 def test_the_ai_keeps_its_progress_in_a_named_volume(
@@ -221,7 +293,7 @@ def test_sim_options_are_ones_the_simulator_reads(services: dict[str, dict[str, 
         for key, value in services["sim"]["environment"].items()
         if key.startswith("SKYDECK_SIM_")
     }
-    assert set(sim_env) == {"SKYDECK_SIM_SPEED", "SKYDECK_SIM_SEED", "SKYDECK_SIM_BOXES"}
+    assert set(sim_env) == {"SKYDECK_SIM_SPEED", "SKYDECK_SIM_SEED"}  # --boxes is a flag
     fields = {key.removeprefix("SKYDECK_SIM_").lower(): value for key, value in sim_env.items()}
     assert set(fields) <= set(SimSettings.model_fields)
     # The defaults are valid settings; an unset seed (null: passed on only when set) draws one.
@@ -238,11 +310,59 @@ def test_the_final_stage_runs_as_a_user_without_build_tools() -> None:
     text = DOCKERFILE.read_text()
     final = text[text.rindex("\nFROM ") :]
     assert re.search(r"^USER (?!root\b)\S+", final, re.MULTILINE), "runs as a non-root user"
-    for tool in ("npm", "apt-get", "pip install", "g++"):
-        assert tool not in final, f"the final stage does not use {tool}"
+    instructions = "\n".join(line for line in final.splitlines() if not line.lstrip().startswith("#"))
+    assert "pip install" not in instructions
+    assert re.search(r"-m pip uninstall --yes --quiet pip setuptools wheel", instructions), (
+        "the base image's own packaging tools are removed"
+    )
+    for tool in ("npm", "node", "apt-get", "apk", "g++", "gcc", "build-essential", "make"):
+        assert not re.search(rf"(?<![\w-]){re.escape(tool)}(?![\w-])", instructions), (
+            f"the final stage does not use {tool}"
+        )
+    # It takes only the finished venv from the build stage, whose last step removes pip and
+    # setuptools from it, and it is the only image: compose runs it for every service.
+    assert re.findall(r"^COPY .*$", final, re.MULTILINE) == ["COPY --from=build /opt/skydeck /opt/skydeck"]
+    assert "pip uninstall --yes setuptools pip" in text
+    assert re.match(r"\nFROM \S+\n", final), "the last stage is the image (no name, no other target)"
     assert "--require-hashes" in text and "requirements-runtime.lock" in text
     assert "swagger-ui-dist" in text, "the core's /docs needs the Swagger UI files"
     assert "three/build" in text, "the dashboard's 3D view needs three.js"
+
+
+@pytest.mark.slow
+@pytest.mark.timeout(180)
+def test_the_images_wheel_carries_both_worlds_and_the_endpoints(tmp_path: Path) -> None:
+    """The build stage's sources (its ``COPY`` lines from the context), made into a wheel as the
+    build stage makes it: every node ``skydeck run`` knows, the endpoints, the shipped launch
+    files and every dashboard file (the 3D view's included) are in it."""
+    text = DOCKERFILE.read_text()
+    build = text[text.index(" AS build") : text.rindex("\nFROM ")]
+    source = tmp_path / "src"
+    for line in re.findall(r"^COPY (?!--)(.+)$", build, re.MULTILINE):
+        *paths, _ = line.split()
+        for path in paths:
+            if path.startswith("requirements"):
+                continue
+            origin = ROOT / path
+            if origin.is_dir():
+                ignore = shutil.ignore_patterns("node_modules", "__pycache__", "*.pyc")  # .dockerignore's
+                shutil.copytree(origin, source / path, ignore=ignore)
+            else:
+                source.mkdir(exist_ok=True)
+                shutil.copy2(origin, source / path)
+    built = subprocess.run(
+        [sys.executable, "-m", "pip", "wheel", "--quiet", "--no-deps", "--no-build-isolation", "-w", str(tmp_path), str(source)],
+        capture_output=True, text=True, timeout=150, check=False,
+    )  # fmt: skip
+    assert built.returncode == 0, built.stderr
+    (wheel,) = tmp_path.glob("*.whl")
+    names = set(zipfile.ZipFile(wheel).namelist())
+    modules = [*BUILTIN_NODES.values(), "services.core.app", "services.core.protocols.servers", "sim_server.robot.node"]
+    wanted = {module.replace(".", "/") + ".py" for module in modules}
+    wanted |= {f"services/launch/{name}.yaml" for name in LAUNCH_FILE.values()}
+    static = ROOT / "web_ui" / "static"
+    wanted |= {path.relative_to(ROOT).as_posix() for path in static.rglob("*") if path.is_file()}
+    assert wanted - names == set(), "missing from the image's wheel"
 
 
 def _pins(lock: Path) -> dict[str, tuple[str, frozenset[str]]]:
