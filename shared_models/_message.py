@@ -210,6 +210,14 @@ class Message(BaseModel):
     # calls), so the flag keeps model_validate_json on pydantic's fast path.
     __init__.__pydantic_base_init__ = True  # type: ignore[attr-defined]
 
+    def __repr__(self) -> str:
+        """As rclpy prints a message: ``geometry_msgs.msg.Point(x=1.0, y=2.0, z=0.0)``."""
+        name = self.__ros_type__.replace("/", ".") if self.__ros_type__ else type(self).__name__
+        fields = ", ".join(f"{field}={getattr(self, field)!r}" for field in type(self).__pydantic_fields__)
+        return f"{name}({fields})"
+
+    __str__ = __repr__  # print(msg) shows the same, as in ROS 2 (pydantic's str drops the type)
+
     @classmethod
     def _positional(cls, args: tuple[Any, ...], data: dict[str, Any]) -> dict[str, Any]:
         """The keyword form of a positional call, refused as genpy refuses it."""

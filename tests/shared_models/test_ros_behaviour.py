@@ -15,6 +15,7 @@ from shared_models.builtin_interfaces import Duration, Time
 from shared_models.geometry_msgs import (
     Point,
     Point32,
+    PointStamped,
     Polygon,
     Pose,
     PoseStamped,
@@ -380,3 +381,11 @@ def test_scan_refuses_non_finite_numbers(frame: str) -> None:
         LaserScan(ranges=[math.inf])
     with pytest.raises(ValidationError):
         Range(range=math.inf)
+
+
+def test_a_message_prints_as_rclpy_prints_it() -> None:
+    stamped = PointStamped(header=Header(frame_id="odom"), point=Point(1.0, 2.0, 0.0))
+    assert repr(stamped.point) == "geometry_msgs.msg.Point(x=1.0, y=2.0, z=0.0)"
+    assert str(stamped).startswith("geometry_msgs.msg.PointStamped(header=std_msgs.msg.Header(")
+    assert "frame_id='odom'" in str(stamped) and str(stamped).endswith("point=geometry_msgs.msg.Point(x=1.0, y=2.0, z=0.0))")
+    assert repr(TriggerResponse(success=True)) == "std_srvs.srv.Trigger_Response(success=True, message='')"
