@@ -26,6 +26,7 @@ MESSAGE_PACKAGES = (
     "std_srvs",
     "mavros_msgs",
     "ros_workshop",
+    "skydeck_launch",
 )
 
 _loaded = False

@@ -12,37 +12,12 @@ from collections.abc import Awaitable, Callable
 
 from services.runtime.node import Node
 from services.runtime.settings import NodeSettings
-from shared_models._message import Bool, Message, ServiceType, String
+from shared_models.skydeck_launch import KillNode, KillNodeRequest, KillNodeResponse
 
 __all__ = ["KILL_SERVICE", "LAUNCH_NODE", "KillNode", "LaunchControl"]
 
 LAUNCH_NODE = "/skydeck_launch"
 KILL_SERVICE = "/skydeck_launch/kill_node"
-
-
-class KillNodeRequest(Message):
-    """Which node to stop: its name in the graph (``/sim``)."""
-
-    __ros_type__ = "skydeck_launch/srv/KillNode_Request"
-
-    node: String = ""
-
-
-class KillNodeResponse(Message):
-    """Whether the supervisor stopped it, and what it did or why not."""
-
-    __ros_type__ = "skydeck_launch/srv/KillNode_Response"
-
-    success: Bool = False
-    message: String = ""
-
-
-class KillNode(ServiceType):
-    """Stop a node of this launch on purpose: it is not respawned."""
-
-    __ros_type__ = "skydeck_launch/srv/KillNode"
-    Request = KillNodeRequest
-    Response = KillNodeResponse
 
 
 class LaunchControl(Node):

@@ -77,6 +77,8 @@ ROS_FIELDS: dict[str, list[str]] = {
     "std_srvs/srv/SetBool_Response": ["success", "message"],
     "ros_workshop/srv/FlyCommand_Request": ["x", "y"],
     "ros_workshop/srv/FlyCommand_Response": ["success", "message"],
+    "skydeck_launch/srv/KillNode_Request": ["node"],
+    "skydeck_launch/srv/KillNode_Response": ["success", "message"],
     "ros_workshop/msg/AiStatus": [
         "header",
         "state",
@@ -356,6 +358,7 @@ def test_services_are_registered_with_their_parts() -> None:
         "rosapi_msgs/srv/TopicType",
         "rosapi_msgs/srv/Topics",
         "rosapi_msgs/srv/TopicsForType",
+        "skydeck_launch/srv/KillNode",
         "std_srvs/srv/Empty",
         "std_srvs/srv/SetBool",
         "std_srvs/srv/Trigger",

@@ -84,3 +84,12 @@ async def start_node_on(core, factory):  # type: ignore[no-untyped-def]
     await node.start()
     await wait_until(lambda: node.get_name() in core.registry.nodes, what="the node to register")
     return node
+
+
+async def test_a_body_that_is_not_utf8_json_is_a_422_like_any_bad_body(core) -> None:
+    async with httpx.AsyncClient(base_url=core.url) as http:
+        for body in (b"l\x060L\xff\xfeE\xc2\x81", b'{"topics": 3}'):
+            reply = await http.post("/api/recordings", content=body, headers={"content-type": "application/json"})
+            assert reply.status_code == 422, reply.text
+            assert reply.json()["detail"][0]["loc"][0] == "body"
+        assert (await http.get("/api/recordings/no-such.mcap")).status_code == 404  # other HTTP errors keep theirs
