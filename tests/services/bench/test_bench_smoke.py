@@ -31,7 +31,7 @@ def _bench(tmp_path: Path, *args: str, timeout_s: float) -> tuple[subprocess.Com
         timeout=timeout_s,
         cwd=tmp_path,  # no docs/img here: nothing may be written outside --out
     )
-    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.returncode == 0, (done.stdout[-4000:], done.stderr[-1500:])  # the table says which row errored
     return done, json.loads(out.read_text())
 
 
