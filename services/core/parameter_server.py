@@ -1,0 +1,172 @@
+"""ROS 1's parameter server, held by the core (roscore holds it in ROS 1).
+
+    PUT    /api/rosparam/ai/visit_radius   {"value": 0.4}   set (a mapping sets a whole subtree)
+    GET    /api/rosparam/ai/visit_radius                    {"name": "/ai/visit_radius", "value": 0.4}
+    GET    /api/rosparam/ai                                 {"name": "/ai", "value": {"visit_radius": 0.4}}
+    GET    /api/rosparam                                    the whole tree
+    DELETE /api/rosparam/ai/visit_radius
+
+ROS 1 parameters are global: one tree of names, a namespace read as a mapping of what is under
+it. rospy's ``get_param``/``set_param`` (:mod:`services.ros.rospy.params`) and the launch of a
+roslaunch file's ``<param>``/``<rosparam>`` use it; names arrive resolved (absolute). ROS 2
+parameters are not here: they belong to each node (``skydeck param``). The tree lives as long
+as the core process, as roscore's does. Values are what XML-RPC carried: booleans, integers,
+floats, strings, lists of those, and mappings (namespaces); there is no null.
+"""
+
+from __future__ import annotations
+
+import copy
+import re
+from typing import Annotated, Any
+
+from fastapi import APIRouter, Depends, HTTPException, Request
+from pydantic import BaseModel
+
+from services.runtime.auth import NOT_AUTHORISED, token_matches
+
+__all__ = ["ParameterTree", "router"]
+
+_TOKEN = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+_MAX_DEPTH = 32
+
+
+class ParameterTree:
+    """The parameter server's tree (see the module docstring); absolute names, ``/`` the root."""
+
+    def __init__(self) -> None:
+        self._root: dict[str, Any] = {}
+
+    def get(self, name: str) -> Any:
+        """The value at ``name`` (a copy of the mapping for a namespace); KeyError if unset."""
+        node: Any = self._root
+        for token in _tokens(name):
+            if not isinstance(node, dict) or token not in node:
+                raise KeyError(name)
+            node = node[token]
+        return copy.deepcopy(node)
+
+    def set(self, name: str, value: Any) -> None:
+        """Set ``name`` to ``value``; a mapping replaces the subtree at ``name``, and a value
+        set under a name that held a plain value turns that name into a namespace."""
+        _check_value(value, name, 0)
+        tokens = _tokens(name)
+        if not tokens:
+            if not isinstance(value, dict):
+                raise ValueError("the root / can only be set to a mapping of names to values")
+            self._root = copy.deepcopy(value)
+            return
+        node = self._root
+        for token in tokens[:-1]:
+            if not isinstance(node.get(token), dict):
+                node[token] = {}
+            node = node[token]
+        node[tokens[-1]] = copy.deepcopy(value)
+
+    def delete(self, name: str) -> None:
+        """Forget ``name`` and all under it; KeyError if unset."""
+        tokens = _tokens(name)
+        if not tokens:
+            self._root = {}
+            return
+        node: Any = self._root
+        for token in tokens[:-1]:
+            if not isinstance(node, dict) or token not in node:
+                raise KeyError(name)
+            node = node[token]
+        if not isinstance(node, dict) or tokens[-1] not in node:
+            raise KeyError(name)
+        del node[tokens[-1]]
+
+
+def _tokens(name: str) -> list[str]:
+    if not name.startswith("/"):
+        raise ValueError(f"parameter name {name!r} must be absolute (start with /)")
+    tokens = [token for token in name.split("/") if token]
+    for token in tokens:
+        if not _TOKEN.fullmatch(token):
+            raise ValueError(f"parameter name {name!r}: {token!r} is not a name (letters, digits and _)")
+    return tokens
+
+
+def _check_value(value: Any, name: str, depth: int) -> None:
+    if depth > _MAX_DEPTH:
+        raise ValueError(f"{name}: nested deeper than {_MAX_DEPTH} levels")
+    if isinstance(value, dict):
+        for key, item in value.items():
+            if not isinstance(key, str) or not _TOKEN.fullmatch(key):
+                raise ValueError(f"{name}: {key!r} is not a parameter name (letters, digits and _)")
+            _check_value(item, f"{name.rstrip('/')}/{key}", depth + 1)
+    elif isinstance(value, list):
+        for item in value:
+            _check_value(item, name, depth + 1)
+    elif value is None or not isinstance(value, bool | int | float | str):
+        raise ValueError(f"{name}: {value!r} is not a parameter value (a number, bool, string, list or mapping)")
+
+
+# -- the API ------------------------------------------------------------------------------------
+
+router = APIRouter(prefix="/api/rosparam", tags=["ROS 1 parameters"])
+
+
+class ParameterValue(BaseModel):
+    """A parameter's value: a number, bool, string, list, or mapping (a namespace)."""
+
+    value: Any
+
+
+class NamedValue(ParameterValue):
+    """A parameter and its absolute name."""
+
+    name: str
+
+
+def _tree(request: Request) -> ParameterTree:
+    return request.app.state.rosparam  # type: ignore[no-any-return]
+
+
+TreeDep = Annotated[ParameterTree, Depends(_tree)]
+
+
+def _authorised(request: Request) -> None:
+    if not token_matches(request.app.state.settings.token, request):
+        raise HTTPException(401, NOT_AUTHORISED)
+
+
+@router.get("")
+@router.get("/{name:path}")
+async def get_parameter(tree: TreeDep, name: str = "") -> NamedValue:
+    """A parameter's value; a namespace's is the mapping of what is under it."""
+    full = "/" + name.strip("/")
+    try:
+        return NamedValue(name=full, value=tree.get(full))
+    except KeyError:
+        raise HTTPException(404, f"no parameter {full}: see GET /api/rosparam for all") from None
+    except ValueError as error:
+        raise HTTPException(400, str(error)) from None
+
+
+@router.put("", dependencies=[Depends(_authorised)])
+@router.put("/{name:path}", dependencies=[Depends(_authorised)])
+async def set_parameter(body: ParameterValue, tree: TreeDep, name: str = "") -> NamedValue:
+    """Set a parameter (a mapping sets the whole namespace under the name)."""
+    full = "/" + name.strip("/")
+    try:
+        tree.set(full, body.value)
+    except ValueError as error:
+        raise HTTPException(400, str(error)) from None
+    return NamedValue(name=full, value=body.value)
+
+
+@router.delete("/{name:path}", dependencies=[Depends(_authorised)])
+async def delete_parameter(tree: TreeDep, name: str) -> NamedValue:
+    """Delete a parameter and everything under it; the answer holds what was deleted."""
+    full = "/" + name.strip("/")
+    try:
+        value = tree.get(full)
+        tree.delete(full)
+    except KeyError:
+        raise HTTPException(404, f"no parameter {full}") from None
+    except ValueError as error:
+        raise HTTPException(400, str(error)) from None
+    return NamedValue(name=full, value=value)
