@@ -6,7 +6,7 @@
 
 Names are absolute (the caller resolves ``~private`` and relative names). A name that is not
 set raises KeyError, as a dict does; a core that cannot be reached, or refuses, raises
-:class:`RosParamError` with one line that says which.
+:class:`RosParamError` (:class:`RosParamUnreachable` for no core) with one line that says which.
 """
 
 from __future__ import annotations
@@ -18,14 +18,18 @@ from typing import Any
 from services.runtime.http_client import HttpClient, HttpError
 from shared_models.errors import SkydeckError
 
-__all__ = ["RosParamClient", "RosParamError"]
+__all__ = ["RosParamClient", "RosParamError", "RosParamUnreachable"]
 
 _PATH = "/api/rosparam"
 _TIMEOUT_S = 5.0
 
 
 class RosParamError(SkydeckError):
-    """The parameter server could not be asked (no core), or refused the request."""
+    """The parameter server refused the request (a bad name or value), or could not be asked."""
+
+
+class RosParamUnreachable(RosParamError):
+    """The core (which holds the parameter server) did not answer."""
 
 
 class RosParamClient:
@@ -54,7 +58,7 @@ class RosParamClient:
         try:
             reply = await self._http.request(method, url, body, timeout_s=self._timeout_s, headers=headers)
         except HttpError as error:
-            raise RosParamError(
+            raise RosParamUnreachable(
                 f"cannot reach the parameter server at {self._core_url} ({error}): is the core "
                 "running (`skydeck core` or `skydeck launch`)?"
             ) from None
