@@ -17,18 +17,16 @@ floats, strings, lists of those, and mappings (namespaces); there is no null.
 from __future__ import annotations
 
 import copy
-import re
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Depends, HTTPException, Request
 from pydantic import BaseModel
 
 from services.runtime.auth import NOT_AUTHORISED, token_matches
+from services.runtime.rosparam import check_parameter_value, parameter_tokens
 
 __all__ = ["ParameterTree", "router"]
 
-_TOKEN = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
-_MAX_DEPTH = 32
 
 
 class ParameterTree:
@@ -40,7 +38,7 @@ class ParameterTree:
     def get(self, name: str) -> Any:
         """The value at ``name`` (a copy of the mapping for a namespace); KeyError if unset."""
         node: Any = self._root
-        for token in _tokens(name):
+        for token in parameter_tokens(name):
             if not isinstance(node, dict) or token not in node:
                 raise KeyError(name)
             node = node[token]
@@ -49,8 +47,8 @@ class ParameterTree:
     def set(self, name: str, value: Any) -> None:
         """Set ``name`` to ``value``; a mapping replaces the subtree at ``name``, and a value
         set under a name that held a plain value turns that name into a namespace."""
-        _check_value(value, name, 0)
-        tokens = _tokens(name)
+        check_parameter_value(value, name)
+        tokens = parameter_tokens(name)
         if not tokens:
             if not isinstance(value, dict):
                 raise ValueError("the root / can only be set to a mapping of names to values")
@@ -65,7 +63,7 @@ class ParameterTree:
 
     def delete(self, name: str) -> None:
         """Forget ``name`` and all under it; KeyError if unset."""
-        tokens = _tokens(name)
+        tokens = parameter_tokens(name)
         if not tokens:
             self._root = {}
             return
@@ -77,31 +75,6 @@ class ParameterTree:
         if not isinstance(node, dict) or tokens[-1] not in node:
             raise KeyError(name)
         del node[tokens[-1]]
-
-
-def _tokens(name: str) -> list[str]:
-    if not name.startswith("/"):
-        raise ValueError(f"parameter name {name!r} must be absolute (start with /)")
-    tokens = [token for token in name.split("/") if token]
-    for token in tokens:
-        if not _TOKEN.fullmatch(token):
-            raise ValueError(f"parameter name {name!r}: {token!r} is not a name (letters, digits and _)")
-    return tokens
-
-
-def _check_value(value: Any, name: str, depth: int) -> None:
-    if depth > _MAX_DEPTH:
-        raise ValueError(f"{name}: nested deeper than {_MAX_DEPTH} levels")
-    if isinstance(value, dict):
-        for key, item in value.items():
-            if not isinstance(key, str) or not _TOKEN.fullmatch(key):
-                raise ValueError(f"{name}: {key!r} is not a parameter name (letters, digits and _)")
-            _check_value(item, f"{name.rstrip('/')}/{key}", depth + 1)
-    elif isinstance(value, list):
-        for item in value:
-            _check_value(item, name, depth + 1)
-    elif value is None or not isinstance(value, bool | int | float | str):
-        raise ValueError(f"{name}: {value!r} is not a parameter value (a number, bool, string, list or mapping)")
 
 
 # -- the API ------------------------------------------------------------------------------------

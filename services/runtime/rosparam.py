@@ -13,15 +13,47 @@ from __future__ import annotations
 
 import contextlib
 import json
+import re
 from typing import Any
 
 from services.runtime.http_client import HttpClient, HttpError
 from shared_models.errors import SkydeckError
 
-__all__ = ["RosParamClient", "RosParamError", "RosParamUnreachable"]
+__all__ = ["RosParamClient", "RosParamError", "RosParamUnreachable", "check_parameter_value", "parameter_tokens"]
 
 _PATH = "/api/rosparam"
 _TIMEOUT_S = 5.0
+_TOKEN = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+_MAX_DEPTH = 32
+
+
+def parameter_tokens(name: str) -> list[str]:
+    """The parts of an absolute parameter name (``/ai/visit_radius`` -> ``["ai", "visit_radius"]``;
+    ``/`` -> ``[]``); ValueError for a name that is not one."""
+    if not name.startswith("/"):
+        raise ValueError(f"parameter name {name!r} must be absolute (start with /)")
+    tokens = [token for token in name.split("/") if token]
+    for token in tokens:
+        if not _TOKEN.fullmatch(token):
+            raise ValueError(f"parameter name {name!r}: {token!r} is not a name (letters, digits and _)")
+    return tokens
+
+
+def check_parameter_value(value: Any, name: str, depth: int = 0) -> None:
+    """ValueError unless ``value`` is what ROS 1's parameter server holds: a bool, number,
+    string, list of those, or a mapping of names to those (a namespace)."""
+    if depth > _MAX_DEPTH:
+        raise ValueError(f"{name}: nested deeper than {_MAX_DEPTH} levels")
+    if isinstance(value, dict):
+        for key, item in value.items():
+            if not isinstance(key, str) or not _TOKEN.fullmatch(key):
+                raise ValueError(f"{name}: {key!r} is not a parameter name (letters, digits and _)")
+            check_parameter_value(item, f"{name.rstrip('/')}/{key}", depth + 1)
+    elif isinstance(value, list):
+        for item in value:
+            check_parameter_value(item, name, depth + 1)
+    elif value is None or not isinstance(value, bool | int | float | str):
+        raise ValueError(f"{name}: {value!r} is not a parameter value (a number, bool, string, list or mapping)")
 
 
 class RosParamError(SkydeckError):
