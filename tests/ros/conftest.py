@@ -11,6 +11,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from services.launch.background import BackgroundProcess
+from tests.e2e.conftest import launch  # noqa: F401  (the fixture: `skydeck launch` for the ROS 1 corpus)
 from tests.web_ui.system import REPO, System
 
 CORPUS = Path(__file__).resolve().parent / "corpus"
