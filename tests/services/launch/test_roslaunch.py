@@ -386,3 +386,32 @@ def test_no_core_answers_on_a_free_port() -> None:
     from services.runtime.ports import free_port_block
 
     assert not core_answers(f"http://127.0.0.1:{free_port_block(1)}")
+
+
+@pytest.mark.timeout(60)
+def test_a_roslaunch_file_starts_a_core_when_none_runs(workspace: Path) -> None:
+    import os
+    import signal
+    import sys
+
+    from services.launch.background import BackgroundProcess
+    from services.runtime.ports import free_port_block
+
+    (workspace / "src" / "talker.py").write_text(
+        'import rospy\nrospy.init_node("talker")\nrospy.loginfo("rate is %s", rospy.get_param("~rate"))\nrospy.spin()\n'
+    )
+    path = workspace / "launch" / "alone.launch"
+    path.write_text('<launch><node name="talker" pkg="demo" type="talker.py"><param name="rate" value="5"/></node></launch>')
+    base = free_port_block(3)
+    process = BackgroundProcess(
+        [sys.executable, "-m", "services.cli", "launch", "--base-port", str(base), "--rosbridge-port", "0",
+         "--foxglove-port", "0", str(path)],
+        name="skydeck launch alone.launch",
+        env={**os.environ, "PYTHONUNBUFFERED": "1"},
+    )  # fmt: skip
+    try:
+        process.wait_for_line("rate is 5", 45)
+        assert f"[launch] starting core :{base}, talker :{base + NODE_PORT_OFFSET}" in "\n".join(process.lines)
+    finally:
+        assert process.stop(signal.SIGINT, timeout_s=20)
+    assert not any("Traceback" in line for line in process.lines), process.tail(20)
