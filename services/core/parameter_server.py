@@ -22,7 +22,7 @@ from typing import Annotated, Any
 from fastapi import APIRouter, Depends, HTTPException, Request
 from pydantic import BaseModel
 
-from services.runtime.auth import NOT_AUTHORISED, token_matches
+from services.runtime.auth import token_required
 from services.runtime.rosparam import check_parameter_value, parameter_tokens
 
 __all__ = ["ParameterTree", "router"]
@@ -101,11 +101,6 @@ def _tree(request: Request) -> ParameterTree:
 TreeDep = Annotated[ParameterTree, Depends(_tree)]
 
 
-def _authorised(request: Request) -> None:
-    if not token_matches(request.app.state.settings.token, request):
-        raise HTTPException(401, NOT_AUTHORISED)
-
-
 @router.get("")
 @router.get("/{name:path}")
 async def get_parameter(tree: TreeDep, name: str = "") -> NamedValue:
@@ -119,8 +114,8 @@ async def get_parameter(tree: TreeDep, name: str = "") -> NamedValue:
         raise HTTPException(400, str(error)) from None
 
 
-@router.put("", dependencies=[Depends(_authorised)])
-@router.put("/{name:path}", dependencies=[Depends(_authorised)])
+@router.put("", dependencies=[Depends(token_required)])
+@router.put("/{name:path}", dependencies=[Depends(token_required)])
 async def set_parameter(body: ParameterValue, tree: TreeDep, name: str = "") -> NamedValue:
     """Set a parameter (a mapping sets the whole namespace under the name)."""
     full = "/" + name.strip("/")
@@ -131,7 +126,7 @@ async def set_parameter(body: ParameterValue, tree: TreeDep, name: str = "") -> 
     return NamedValue(name=full, value=body.value)
 
 
-@router.delete("/{name:path}", dependencies=[Depends(_authorised)])
+@router.delete("/{name:path}", dependencies=[Depends(token_required)])
 async def delete_parameter(tree: TreeDep, name: str) -> NamedValue:
     """Delete a parameter and everything under it; the answer holds what was deleted."""
     full = "/" + name.strip("/")

@@ -270,16 +270,19 @@ class _Reader:
             raise self.fail(scope, element, f"{sources[0]}= is not provided by Skydeck: give value= or textfile=")
         name = self.parameter_name(scope, element, values["name"], private)
         if sources[0] == "textfile":
-            path = Path(values["textfile"])
-            path = path if path.is_absolute() else scope.file.parent / path
-            try:
-                text = path.read_text(encoding="utf-8")
-            except OSError as error:
-                raise self.fail(scope, element, f"textfile {path}: cannot read it ({error.strerror or error})") from None
-            value: Any = text
+            value: Any = self.read_text(scope, element, values["textfile"], "textfile")
         else:
             value = self.typed(scope, element, values["value"], values.get("type", "auto"))
         self.set_parameter(scope, element, name, value)
+
+    def read_text(self, scope: _Scope, element: _Element, name: str, attribute: str) -> str:
+        """The text of the file ``name`` (relative to the launch file's folder)."""
+        path = Path(name)
+        path = path if path.is_absolute() else scope.file.parent / path
+        try:
+            return path.read_text(encoding="utf-8")
+        except OSError as error:
+            raise self.fail(scope, element, f"{attribute} {path}: cannot read it ({error.strerror or error})") from None
 
     def typed(self, scope: _Scope, element: _Element, text: str, kind: str) -> Any:
         """A ``<param value>`` read as its ``type`` says (``auto``: bool, int, double or str)."""
@@ -316,12 +319,7 @@ class _Reader:
         if command != "load":
             raise self.fail(scope, element, f"command={command!r} is not provided by Skydeck (it loads parameters only)")
         if "file" in values:
-            path = Path(values["file"])
-            path = path if path.is_absolute() else scope.file.parent / path
-            try:
-                text = path.read_text(encoding="utf-8")
-            except OSError as error:
-                raise self.fail(scope, element, f"file {path}: cannot read it ({error.strerror or error})") from None
+            text = self.read_text(scope, element, values["file"], "file")
         else:
             text = element.text
         if "subst_value" in values and _boolean(values["subst_value"], lambda: self.fail(scope, element, "subst_value is not true or false")):

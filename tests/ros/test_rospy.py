@@ -17,19 +17,10 @@ from pathlib import Path
 
 import pytest
 
+from tests.ros.conftest import until
 from tests.web_ui.system import REPO, System
 
 pytestmark = [pytest.mark.timeout(60)]
-
-
-@pytest.fixture(scope="module")
-def core() -> Iterator[System]:
-    from services.runtime.ports import free_port_block
-
-    system = System(free_port_block(1))
-    system.start("core", ["core"], system.base_port)
-    yield system
-    system.stop()
 
 
 @pytest.fixture
@@ -47,16 +38,8 @@ def rospy(core: System, monkeypatch: pytest.MonkeyPatch) -> Iterator[object]:
     process.__init__()  # type: ignore[misc]
 
 
-def _until(predicate, timeout_s: float = 10.0, what: str = "condition") -> None:  # type: ignore[no-untyped-def]
-    deadline = time.monotonic() + timeout_s
-    while not predicate():
-        if time.monotonic() > deadline:
-            raise AssertionError(f"timed out waiting for {what}")
-        time.sleep(0.01)
-
-
 def _linked(publisher) -> None:  # type: ignore[no-untyped-def]
-    _until(lambda: publisher.get_num_connections() > 0, what=f"a subscriber of {publisher.resolved_name}")
+    until(lambda: publisher.get_num_connections() > 0, what=f"a subscriber of {publisher.resolved_name}")
 
 
 def test_time_and_duration_are_genpys_and_compare_with_received_stamps(rospy) -> None:  # type: ignore[no-untyped-def]
@@ -135,7 +118,7 @@ def test_subscribers_call_back_on_threads_of_their_own_while_main_loops(rospy) -
         words.publish(data=f"w{i}")
         rate.sleep()
     assert 0.15 < time.monotonic() - started < 1.0  # 20 passes at 100 Hz
-    _until(lambda: len(heard["a"]) == 20 and len(heard["b"]) == 20, what="40 messages")
+    until(lambda: len(heard["a"]) == 20 and len(heard["b"]) == 20, what="40 messages")
     assert [n for n, _ in heard["a"]] == list(range(20))  # in order
     threads = {name for key in heard for _, name in heard[key]}
     assert len(threads) == 2 and threading.main_thread().name not in threads and "bridge" not in str(threads)
@@ -164,9 +147,9 @@ def test_a_slow_subscriber_keeps_the_newest_queue_size_messages(rospy) -> None: 
     assert entered.wait(10)
     for i in range(1, 10):
         publisher.publish(i)
-    _until(lambda: len(fast_got) == 10, what="every message at the other subscriber")
+    until(lambda: len(fast_got) == 10, what="every message at the other subscriber")
     gate.set()
-    _until(lambda: len(slow_got) == 3, what="three callbacks")
+    until(lambda: len(slow_got) == 3, what="three callbacks")
     assert slow_got == [0, 8, 9] and fast_got == list(range(10))
 
 
@@ -218,7 +201,7 @@ def test_blocking_service_calls_work_from_a_subscriber_callback(rospy) -> None: 
     _linked(publisher)
     publisher.publish(1)
     publisher.publish(0)
-    _until(lambda: answers == ["yes", "no"], what="two answers from inside the callback")
+    until(lambda: answers == ["yes", "no"], what="two answers from inside the callback")
 
 
 def test_no_service_and_wait_timeouts_raise_rospys_exceptions(rospy) -> None:  # type: ignore[no-untyped-def]
@@ -253,7 +236,7 @@ def test_a_raising_callback_shows_the_users_line_and_the_node_keeps_running(rosp
     _linked(publisher)
     for i in range(3):
         publisher.publish(i)
-    _until(lambda: got == [1, 2], what="the later messages")
+    until(lambda: got == [1, 2], what="the later messages")
     with pytest.raises(rospy.ServiceException, match="ZeroDivisionError"):
         rospy.ServiceProxy("broken", Trigger)()
     text = caplog.text
@@ -291,7 +274,7 @@ def test_shutdown_runs_hooks_and_ends_sleeps_and_timers(rospy) -> None:  # type:
     rospy.Timer(rospy.Duration(0.05), ticks.append)
     once: list[object] = []
     rospy.Timer(rospy.Duration(0.05), once.append, oneshot=True)
-    _until(lambda: len(ticks) >= 3, what="three ticks")
+    until(lambda: len(ticks) >= 3, what="three ticks")
     event = ticks[-1]
     assert event.current_real >= event.current_expected and event.last_real is not None  # type: ignore[attr-defined]
     assert len(once) == 1
