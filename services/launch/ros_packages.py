@@ -16,13 +16,15 @@ import xml.etree.ElementTree as ElementTree
 from dataclasses import dataclass
 from pathlib import Path
 
+from shared_models.errors import SkydeckError
+
 __all__ = ["PackageNotFound", "RosPackage", "find_package", "package_of"]
 
 _PROGRAM_FOLDERS = ("src", "scripts", "nodes", "bin", ".")
 _WORKSPACE_DEPTH = 2  # catkin_ws/src/PKG and catkin_ws/src/GROUP/PKG
 
 
-class PackageNotFound(LookupError):
+class PackageNotFound(SkydeckError, LookupError):
     """No package of that name, or no such program in the package; the message says where we looked."""
 
 

@@ -1,6 +1,7 @@
-"""``rospy.exceptions``: what rospy raises, with rospy's names and hierarchy.
+"""``rospy.exceptions``: what rospy raises, with rospy's names and hierarchy, under Skydeck's
+one root (``SkydeckError``, an Exception as rospy's are).
 
-    Exception
+    SkydeckError
     ├── ROSException                      rospy's base
     │   ├── ROSInitException              rospy used before ``init_node``, or init_node called twice
     │   ├── ROSInterruptException         a sleep cut short by shutdown (also a KeyboardInterrupt)
@@ -11,8 +12,9 @@
     │   └── CoreUnreachableException      the core (ROS 1's master) does not answer
     └── ROSInternalException
 
-``CoreUnreachableException`` is also a Skydeck error: uncaught, ``skydeck run`` prints it as one
-line that says to start the core, as rospy says the master is not running.
+Uncaught, ``skydeck run`` prints any of them as one line (``skydeck: error: ...``), such as
+``CoreUnreachableException``'s, which says to start the core, as rospy says the master is not
+running; ``ROSInterruptException`` ends the program quietly, as Ctrl-C does.
 """
 
 from __future__ import annotations
@@ -32,7 +34,7 @@ __all__ = [
 ]
 
 
-class ROSException(Exception):
+class ROSException(SkydeckError):
     """Base of rospy's exceptions."""
 
 
@@ -64,9 +66,9 @@ class TransportException(ROSException):
     """A connection failed."""
 
 
-class CoreUnreachableException(ROSException, SkydeckError):
+class CoreUnreachableException(ROSException):
     """The core (what ROS 1 calls the master) did not answer."""
 
 
-class ROSInternalException(Exception):
+class ROSInternalException(SkydeckError):
     """Something went wrong inside rospy itself."""
