@@ -62,7 +62,8 @@ def test_time_and_duration_are_genpys_and_compare_with_received_stamps(rospy) ->
 
 
 def test_init_node_reads_ros1_arguments_and_private_parameters(rospy) -> None:  # type: ignore[no-untyped-def]
-    argv = ["talker.py", "--fast", "chatter:=/news", "__ns:=/robot1", "_rate:=5", "_frame:=odom"]
+    argv = ["talker.py", "--fast", "chatter:=/news", "__ns:=/robot1", "_rate:=5", "_frame:=odom",
+            "--ros-args", "-p", "ros2_style:=1"]  # fmt: skip
     with pytest.raises(ValueError, match="namespaces are not allowed"):
         rospy.init_node("a/b")
     rospy.init_node("talker", argv=argv, disable_signals=True)
@@ -70,6 +71,7 @@ def test_init_node_reads_ros1_arguments_and_private_parameters(rospy) -> None:  
     assert rospy.resolve_name("chatter") == "/news" and rospy.resolve_name("~x") == "/robot1/talker/x"
     assert rospy.get_param("~rate") == 5 and rospy.get_param("/robot1/talker/frame") == "odom"
     assert rospy.myargv(argv) == ["talker.py", "--fast"]
+    assert {"init_node", "Publisher", "ServiceProxy", "Rate"} <= set(rospy.__all__)
     rospy.init_node("talker", argv=argv, disable_signals=True)  # the same again: nothing happens
     with pytest.raises(rospy.ROSException, match="already been called with different arguments"):
         rospy.init_node("listener", disable_signals=True)

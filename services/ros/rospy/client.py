@@ -63,7 +63,8 @@ def init_node(
     configure_logging()
     if anonymous:
         name = f"{name}_{os.getpid()}_{time.time_ns() // 1_000_000 % 1_000_000_000}"
-    ros1 = parse_ros1_args(list(sys.argv[1:] if argv is None else argv))[1]
+    words = list(sys.argv[1:] if argv is None else argv)
+    ros1 = parse_ros1_args(split_ros_args(words)[0] if ROS_ARGS in words else words)[1]
     use_sim_time = _use_sim_time()
     node = RuntimeNode(
         name,
