@@ -105,30 +105,39 @@ class _SecondsAndNanoseconds(Message):
     def nsecs(self, value: int) -> None:
         self.nanosec = value
 
-    # Ordering within one type only: a Time is not comparable with a Duration (as in ROS).
+    # Ordering and equality within one kind only: a Time is not comparable with a Duration (as
+    # in ROS), but a Time of a façade's subclass (rospy.Time) is one with a received stamp.
+    def _same_kind(self, other: object) -> bool:
+        return isinstance(other, _SecondsAndNanoseconds) and isinstance(other, Time) == isinstance(self, Time)
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, _SecondsAndNanoseconds):
+            return NotImplemented
+        return self._same_kind(other) and self.to_nsec() == other.to_nsec()
+
     def __lt__(self, other: object) -> bool:
-        if type(other) is not type(self):
+        if not self._same_kind(other):
             return NotImplemented
         return self.to_nsec() < other.to_nsec()  # type: ignore[attr-defined]
 
     def __le__(self, other: object) -> bool:
-        if type(other) is not type(self):
+        if not self._same_kind(other):
             return NotImplemented
         return self.to_nsec() <= other.to_nsec()  # type: ignore[attr-defined]
 
     def __gt__(self, other: object) -> bool:
-        if type(other) is not type(self):
+        if not self._same_kind(other):
             return NotImplemented
         return self.to_nsec() > other.to_nsec()  # type: ignore[attr-defined]
 
     def __ge__(self, other: object) -> bool:
-        if type(other) is not type(self):
+        if not self._same_kind(other):
             return NotImplemented
         return self.to_nsec() >= other.to_nsec()  # type: ignore[attr-defined]
 
     # Hashable as rospy's times are (a stamp as a dict key); mutating a key is the caller's risk.
     def __hash__(self) -> int:
-        return hash((type(self).__name__, self.sec, self.nanosec))
+        return hash((isinstance(self, Time), self.sec, self.nanosec))
 
 
 class Time(_SecondsAndNanoseconds):

@@ -26,6 +26,10 @@ launcher and the CLI all descend from one class. The whole tree::
     ├── InvalidCommand (ValueError)         -    -     a setpoint or cmd_vel the physics refuses
     ├── LaunchError                         -    -     a launch cannot go ahead
     │   └── LaunchFileError                            the launch file is missing or wrong
+    ├── PackageNotFound (LookupError)       -    -     a roslaunch file's package or node type is not there
+    ├── RosParamError                       -    -     ROS 1's parameter server refused or did not answer
+    ├── RosFacadeError                      -    -     a ROS program asked for what Skydeck lacks (services/ros/errors.py)
+    ├── ROSException, ROSInternalException  -    -     rospy's own (services/ros/rospy/exceptions.py)
     ├── CliError                            -    -     a CLI command the user can fix
     └── BenchError                          -    -     a benchmark could not be measured
 

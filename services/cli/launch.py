@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 
+from services.cli.errors import CliError
 from services.cli.run import add_endpoint_flags
 
 __all__ = ["add_parser"]
@@ -15,7 +16,12 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
         help="start the core, the simulator and the nodes of a launch file (default: the workshop)",
     )
     p.add_argument(
-        "file", nargs="?", help="a YAML launch file, or a shipped one by name: workshop (the default), robot"
+        "file",
+        nargs="?",
+        help="a YAML launch file, a roslaunch XML file (.launch), or a shipped one by name: workshop (the default), robot",
+    )
+    p.add_argument(
+        "launch_args", nargs="*", metavar="NAME:=VALUE", help="a roslaunch file's <arg> values, as roslaunch takes them"
     )
     p.add_argument("--base-port", type=int, default=8000, help="core on N, sim N+1, perception N+2, ... (default 8000)")
     p.add_argument("--speed", default="1", help="simulator speed: times real time, or 'max' (default 1)")
@@ -44,4 +50,10 @@ def _launch(args: argparse.Namespace) -> int:
             if value is not None
         },
     )
-    return run_launch(args.file, options)  # a LaunchError is printed as one line by main
+    launch_args = {}
+    for text in args.launch_args:
+        name, separator, value = text.partition(":=")
+        if not separator or not name:
+            raise CliError(f"{text!r}: launch arguments are NAME:=VALUE (e.g. use_sim_time:=false)")
+        launch_args[name] = value
+    return run_launch(args.file, options, launch_args=launch_args)  # a LaunchError is one line, by main

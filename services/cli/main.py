@@ -49,6 +49,8 @@ def main(argv: list[str] | None = None) -> int:
     args.extra = extra
     try:
         return int(args.func(args) or 0)
+    except KeyboardInterrupt:  # first: rospy's ROSInterruptException is also a Skydeck error
+        return 130
     except SkydeckError as error:  # every error Skydeck raises on purpose says what to do
         print(f"skydeck: error: {error}", file=sys.stderr)
         return 1
@@ -57,8 +59,6 @@ def main(argv: list[str] | None = None) -> int:
         setting = "SKYDECK_" + "_".join(str(part) for part in first["loc"]).upper()
         print(f"skydeck: error: {setting}: {first['msg']}", file=sys.stderr)
         return 1
-    except KeyboardInterrupt:
-        return 130
     except BrokenPipeError:
         # Whoever read our output stopped (`skydeck topic echo /x | head`): as a shell tool does,
         # stop quietly; point stdout at nothing so the interpreter's final flush cannot fail.

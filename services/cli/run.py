@@ -10,6 +10,7 @@ from pathlib import Path
 
 from services.builtin_nodes import BUILTIN_NODES
 from services.cli.errors import CliError
+from shared_models.errors import SkydeckError
 
 __all__ = ["add_parsers"]
 
@@ -124,6 +125,13 @@ def _run_file(path: Path, argv: list[str]) -> int:
     sys.path.insert(0, str(path.resolve().parent))
     try:
         runpy.run_path(str(path), run_name="__main__")
+    except (KeyboardInterrupt, SystemExit, SkydeckError):
+        raise  # Ctrl-C, the program's own exit, and Skydeck's one-line errors: main's
+    except Exception as error:  # the program's own: its traceback, without Skydeck's frames
+        from services.ros.tracebacks import user_traceback
+
+        print(user_traceback(error), file=sys.stderr)
+        return 1
     finally:
         _stop_ros_nodes()
     return 0

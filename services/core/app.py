@@ -27,6 +27,8 @@ from services.core.core_node import CORE_NODE, CORE_NODE_PATH, CoreNode
 from services.core.gateway import Gateway, ServiceCallsFirst
 from services.core.guests import Guests
 from services.core.openapi import aggregate_openapi
+from services.core.parameter_server import ParameterTree
+from services.core.parameter_server import router as parameter_server_router
 from services.core.protocols.access import CoreAccess
 from services.core.protocols.foxglove import FoxgloveEndpoint
 from services.core.protocols.rosapi import host_rosapi
@@ -112,6 +114,7 @@ def create_app(
     app.state.registry = registry
     app.state.settings = settings
     app.state.core_node = core_node
+    app.state.rosparam = ParameterTree()  # ROS 1's parameter server: the core's, as roscore's
     # Innermost first: service calls skip routing, inside the size and origin checks.
     app.add_middleware(ServiceCallsFirst, registry=registry, gateway=lambda: getattr(app.state, "gateway", None))
     app.add_middleware(BodySizeLimit, max_bytes=settings.max_message_bytes)
@@ -119,6 +122,7 @@ def create_app(
     install_error_handlers(app)
     app.include_router(api_router)
     app.include_router(recordings_router)
+    app.include_router(parameter_server_router)
 
     @app.get("/health", tags=["core"])
     async def health() -> dict[str, Any]:

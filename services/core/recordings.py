@@ -33,7 +33,7 @@ from services.bag.recording import Limits, Recording, TopicSelection
 from services.bag.writer import BagWriter
 from services.core.core_node import CoreNode
 from services.core.registry import Registry
-from services.runtime.auth import NOT_AUTHORISED, token_matches
+from services.runtime.auth import token_required
 from services.runtime.subscription import RawSubscription
 from shared_models import Message, resolve_name
 
@@ -230,24 +230,19 @@ def _recordings(request: Request) -> Recordings:
 RecordingsDep = Annotated[Recordings, Depends(_recordings)]
 
 
-def _authorised(request: Request) -> None:
-    if not token_matches(request.app.state.settings.token, request):
-        raise HTTPException(401, NOT_AUTHORISED)
-
-
 @router.get("")
 async def list_recordings(recordings: RecordingsDep) -> dict[str, Any]:
     """The recordings folder: its files (newest first) and the recording in progress, if any."""
     return {"folder": str(recordings.folder), "current": recordings.status(), "files": recordings.files()}
 
 
-@router.post("", dependencies=[Depends(_authorised)], responses={409: {"description": "Already recording"}})
+@router.post("", dependencies=[Depends(token_required)], responses={409: {"description": "Already recording"}})
 async def start_recording(recordings: RecordingsDep, request: Annotated[StartRecording | None, Body()] = None) -> dict[str, Any]:
     """Start recording every topic (or the ones named) into a new MCAP file."""
     return recordings.start(request or StartRecording())
 
 
-@router.post("/stop", dependencies=[Depends(_authorised)], responses={409: {"description": "Nothing to stop"}})
+@router.post("/stop", dependencies=[Depends(token_required)], responses={409: {"description": "Nothing to stop"}})
 async def stop_recording(recordings: RecordingsDep) -> dict[str, Any]:
     """Stop the recording in progress and finish its file."""
     return await recordings.stop()

@@ -16,6 +16,8 @@ from services.launch.plan import (
     default_command,
     plan_launch,
 )
+from services.launch.roslaunch import RosLaunch, RosNode, is_roslaunch_file, load_roslaunch_file
+from services.launch.run import core_answers, run_launch
 from services.launch.spec import (
     BUILTIN_RUNS,
     PLACEHOLDERS,
@@ -26,7 +28,7 @@ from services.launch.spec import (
     load_launch_file,
     shipped_launch_files,
 )
-from services.launch.supervisor import CommandFor, NodeState, NodeStatus, Supervisor, run_launch
+from services.launch.supervisor import CommandFor, NodeState, NodeStatus, Supervisor
 
 __all__ = [
     "BUILTIN_RUNS",
@@ -41,12 +43,17 @@ __all__ = [
     "NodeSpec",
     "NodeState",
     "NodeStatus",
+    "RosLaunch",
+    "RosNode",
     "Supervisor",
+    "core_answers",
     "core_url",
     "default_command",
     "default_launch_file",
     "find_launch_file",
+    "is_roslaunch_file",
     "load_launch_file",
+    "load_roslaunch_file",
     "plan_launch",
     "run_launch",
     "shipped_launch_files",

@@ -55,8 +55,9 @@ BUILTIN_RUNS = (CORE_RUN, *BUILTIN_NODES)
 PLACEHOLDERS = ("speed", "seed", "boxes", "robots", "base_port")
 """The ``{name}`` placeholders that arguments and environment values may use."""
 
-# A node's name prefixes its output lines and is used by --exclude, so it stays one plain token.
-_NAME_PATTERN = r"^[A-Za-z][A-Za-z0-9_-]*$"
+# A node's name prefixes its output lines and is used by --exclude, so it stays plain tokens (a
+# roslaunch file's node in a namespace is named by its graph name: robot1/talker).
+_NAME_PATTERN = r"^[A-Za-z][A-Za-z0-9_-]*(/[A-Za-z][A-Za-z0-9_-]*)*$"
 _RESERVED_NAMES = ("launch",)  # the supervisor's own lines start with "[launch]"
 
 

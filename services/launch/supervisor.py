@@ -8,7 +8,9 @@ Nodes start one at a time in launch order, the core first; each must answer
 process group), so stopping a node kills whatever it started too, and a Ctrl-C in the terminal
 reaches only the supervisor, which then stops the nodes in reverse order: SIGTERM to the group,
 up to ``stop_timeout_s`` to exit, then SIGKILL. Children's output lines are forwarded with a
-``[name]`` prefix; the supervisor's own lines start with ``[launch]``.
+``[name]`` prefix; the supervisor's own lines start with ``[launch]``. A launch may carry ROS 1
+parameters (a roslaunch file's ``<param>``): they are set on the core's parameter server once
+the core answers, before any other node starts.
 """
 
 from __future__ import annotations
@@ -23,20 +25,20 @@ import time
 from collections import deque
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from pathlib import Path
 from typing import TYPE_CHECKING, TextIO
 
 from services.launch.child_process import ChildProcess, Health, describe_exit, signal_group, spawn
 from services.launch.errors import LaunchError
 from services.launch.plan import LaunchOptions, NodePlan, core_url, default_command, plan_launch
-from services.launch.spec import LaunchSpec, find_launch_file, load_launch_file
+from services.launch.spec import LaunchSpec
 from services.runtime.http_client import HttpClient, HttpError
 from services.runtime.ports import port_is_free
+from services.runtime.rosparam import RosParamClient, RosParamError
 
 if TYPE_CHECKING:
     from services.runtime.node import Node
 
-__all__ = ["CommandFor", "NodeState", "NodeStatus", "Supervisor", "run_launch"]
+__all__ = ["CommandFor", "NodeState", "NodeStatus", "Supervisor"]
 
 CommandFor = Callable[[NodePlan], Sequence[str]]
 """Turns a node's plan into the argv that starts it (``default_command`` runs the skydeck CLI)."""
@@ -108,8 +110,9 @@ class Supervisor:
 
     ``command_for`` builds each node's argv (tests substitute small programs); ``out`` receives
     every line (default: standard output); ``control`` starts the launch's own node once the
-    core is up (``/skydeck_launch``, which ``skydeck node kill`` asks). Raises ``LaunchError``
-    at once for bad options.
+    core is up (``/skydeck_launch``, which ``skydeck node kill`` asks); ``parameters`` (absolute
+    name -> value, in order) go to the core's ROS 1 parameter server before the first node
+    other than the core starts. Raises ``LaunchError`` at once for bad options.
     """
 
     def __init__(
@@ -121,6 +124,7 @@ class Supervisor:
         out: TextIO | None = None,
         stop_timeout_s: float = STOP_TIMEOUT_S,
         control: bool = False,
+        parameters: Sequence[tuple[str, object]] = (),
     ) -> None:
         given = options or LaunchOptions()
         self.options = given.with_seed()
@@ -143,6 +147,7 @@ class Supervisor:
         self._changed = asyncio.Event()
         self._control_wanted = control
         self._control: Node | None = None
+        self._parameters = tuple(parameters)
 
     # -- public ---------------------------------------------------------------------------------
 
@@ -161,12 +166,18 @@ class Supervisor:
                 self._check_ports_free()
                 self._http = HttpClient()
                 self._announce()
+                parameters_set = False
                 for child in self._children.values():
                     if self._stopping:
                         return
+                    if not child.plan.is_core and not parameters_set:
+                        await self._set_parameters()
+                        parameters_set = True
                     await self._start_first(child)
                     if child.plan.is_core and self._control_wanted:
                         await self._start_control()
+                if not parameters_set:
+                    await self._set_parameters()
             finally:
                 self._start_idle.set()
         except BaseException:
@@ -284,6 +295,19 @@ class Supervisor:
                     f"port {port} for the core's {endpoint} endpoint is already in use (another "
                     f"Skydeck or {endpoint} server?): choose another with {flag} PORT, or {flag} 0 to turn it off"
                 )
+
+    async def _set_parameters(self) -> None:
+        """Put the launch's ROS 1 parameters on the core's parameter server."""
+        if not self._parameters or self._http is None:
+            return
+        server = RosParamClient(self._http, self.core_url)
+        try:
+            for name, value in self._parameters:
+                await server.set(name, value)
+        except RosParamError as error:
+            raise LaunchError(f"cannot set the launch's parameters: {error}") from None
+        count = len(self._parameters)
+        self._say(f"set {count} parameter{'s' if count != 1 else ''} on the core's parameter server")
 
     async def _start_first(self, child: _Child) -> None:
         plan = child.plan
@@ -509,18 +533,3 @@ class Supervisor:
         """Wake every ``wait_ready`` so it re-checks its condition."""
         self._changed.set()
         self._changed = asyncio.Event()
-
-
-def run_launch(
-    path: str | Path | None = None,
-    options: LaunchOptions | None = None,
-    *,
-    out: TextIO | None = None,
-) -> int:
-    """``skydeck launch``: load the launch file (default: the workshop's; a bare name such as
-    ``robot`` names a shipped one) and run it until stopped.
-
-    Raises ``LaunchError`` (``LaunchFileError`` for the file) with one line to show the user.
-    """
-    spec = load_launch_file(find_launch_file(path))
-    return asyncio.run(Supervisor(spec, options, out=out, control=True).run())

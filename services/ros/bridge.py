@@ -53,6 +53,7 @@ class Bridge:
         self._loop: asyncio.AbstractEventLoop | None = None
         self._thread: threading.Thread | None = None
         self._lock = threading.Lock()
+        self._shutting_down = threading.Lock()  # one shutdown at a time; a second waits for it
         self._nodes: list[Node] = []
 
     # -- the loop -----------------------------------------------------------------------------
@@ -165,7 +166,7 @@ class Bridge:
         node.destroy_node()
         if self._loop is not None and not self.in_loop_thread():
             # On timeout the process is ending anyway; the core drops a node whose session closes.
-            with contextlib.suppress(TimeoutError):
+            with contextlib.suppress(TimeoutError, concurrent.futures.CancelledError):
                 self.run(node.stop(), timeout_s=_STOP_TIMEOUT_S)
 
     @property
@@ -175,6 +176,10 @@ class Bridge:
 
     def shutdown(self) -> None:
         """Stop every node and the loop (at interpreter exit, or by the façade's shutdown)."""
+        with self._shutting_down:
+            self._shutdown()
+
+    def _shutdown(self) -> None:
         for node in reversed(self.nodes):
             self.stop_node(node)
         with self._lock:

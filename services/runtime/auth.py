@@ -11,7 +11,8 @@ import hmac
 import logging
 import re
 
-from starlette.requests import HTTPConnection
+from starlette.exceptions import HTTPException
+from starlette.requests import HTTPConnection, Request
 
 from services.runtime.wire import TOKEN_QUERY_PARAMETER
 
@@ -21,6 +22,7 @@ __all__ = [
     "WEBSOCKET_CLIENT_LOGGER",
     "RedactTokens",
     "presented_token",
+    "token_required",
     "token_is_valid",
     "token_matches",
 ]
@@ -40,6 +42,12 @@ def presented_token(connection: HTTPConnection) -> str:
 def token_matches(expected: str, connection: HTTPConnection) -> bool:
     """Whether ``connection`` may act; always true when no token is configured."""
     return token_is_valid(expected, presented_token(connection))
+
+
+def token_required(request: Request) -> None:
+    """A route dependency of the core's writes: 401 without the core's token (``app.state.settings``)."""
+    if not token_matches(request.app.state.settings.token, request):
+        raise HTTPException(401, NOT_AUTHORISED)
 
 
 def token_is_valid(expected: str, presented: str) -> bool:

@@ -6,11 +6,15 @@ from __future__ import annotations
 import os
 import signal
 import sys
-from collections.abc import Iterator
+import time
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+import pytest
+
 from services.launch.background import BackgroundProcess
+from tests.e2e.conftest import launch  # noqa: F401  (the fixture: `skydeck launch` for the ROS 1 corpus)
 from tests.web_ui.system import REPO, System
 
 CORPUS = Path(__file__).resolve().parent / "corpus"
@@ -41,3 +45,23 @@ def ros_file(system: System, path: Path | str, *args: str, sim_time: bool = True
 def no_skydeck_frames(lines: list[str]) -> bool:
     """Whether no traceback line points into Skydeck's own code."""
     return not any(f"{REPO}/services/" in line or f"{REPO}/shared_models/" in line for line in lines)
+
+
+@pytest.fixture(scope="module")
+def core() -> Iterator[System]:
+    """A core of its own (a subprocess) for the façade tests in this process."""
+    from services.runtime.ports import free_port_block
+
+    system = System(free_port_block(1))
+    system.start("core", ["core"], system.base_port)
+    yield system
+    system.stop()
+
+
+def until(predicate: Callable[[], bool], timeout_s: float = 10.0, what: str = "condition") -> None:
+    """Poll ``predicate`` (state changed by another thread) until true; fail after ``timeout_s``."""
+    deadline = time.monotonic() + timeout_s
+    while not predicate():
+        if time.monotonic() > deadline:
+            raise AssertionError(f"timed out waiting for {what}")
+        time.sleep(0.01)

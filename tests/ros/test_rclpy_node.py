@@ -14,19 +14,10 @@ import pytest
 
 from services.ros.errors import NotProvidedError
 from services.ros.rclpy.context import NotInitializedException
+from tests.ros.conftest import until
 from tests.web_ui.system import System
 
 pytestmark = [pytest.mark.timeout(60)]
-
-
-@pytest.fixture(scope="module")
-def core() -> Iterator[System]:
-    from services.runtime.ports import free_port_block
-
-    system = System(free_port_block(1))
-    system.start("core", ["core"], system.base_port)
-    yield system
-    system.stop()
 
 
 @pytest.fixture
@@ -37,14 +28,6 @@ def rclpy(core: System, monkeypatch: pytest.MonkeyPatch) -> Iterator[object]:
     facade.init(args=[])
     yield facade
     facade.shutdown()
-
-
-def _until(predicate, timeout_s: float = 10.0, what: str = "condition") -> None:  # type: ignore[no-untyped-def]
-    deadline = time.monotonic() + timeout_s
-    while not predicate():
-        if time.monotonic() > deadline:
-            raise AssertionError(f"timed out waiting for {what}")
-        time.sleep(0.01)
 
 
 def _spin_in_thread(rclpy, node) -> threading.Thread:  # type: ignore[no-untyped-def]
@@ -69,7 +52,7 @@ def test_publishing_from_many_threads_reaches_the_subscriber_in_the_executor(rcl
     listener.create_subscription(Int32, "numbers", lambda m: got.append((m.data, threading.current_thread().name)), 1000)
     publisher = talker.create_publisher(Int32, "numbers", 1000)
     _spin_in_thread(rclpy, listener)
-    _until(lambda: publisher.get_subscription_count() > 0, what="the listener to link")
+    until(lambda: publisher.get_subscription_count() > 0, what="the listener to link")
     msg = Int32()
     threads = [threading.Thread(target=lambda k=k: [publisher.publish(Int32(data=k * 100 + i)) for i in range(100)]) for k in range(3)]
     for thread in threads:
@@ -79,7 +62,7 @@ def test_publishing_from_many_threads_reaches_the_subscriber_in_the_executor(rcl
         publisher.publish(msg)
     for thread in threads:
         thread.join()
-    _until(lambda: len(got) == 400, what="400 messages")
+    until(lambda: len(got) == 400, what="400 messages")
     assert sorted(n for n, _ in got) == list(range(400))
     assert {name for _, name in got} == {next(t.name for t in threading.enumerate() if t.name == got[0][1])}
     assert "bridge" not in got[0][1]  # callbacks run in the spinning thread, not on the loop
@@ -128,7 +111,7 @@ def test_services_answer_calls_from_main_thread_callbacks_and_futures(rclpy) -> 
     answers: list[str] = []
     client_node.create_subscription(Empty, "poke", lambda m: answers.append(client.call(SetBool.Request(data=True)).message), 10)
     poke = server.create_publisher(Empty, "poke", 10)
-    _until(lambda: poke.get_subscription_count() > 0, what="poke link")
+    until(lambda: poke.get_subscription_count() > 0, what="poke link")
     poke.publish(Empty())
     for _ in range(50):
         if answers:
@@ -182,7 +165,7 @@ def test_parameters_from_overrides_api_and_the_graph_reach_the_on_set_callback(r
     node.add_on_set_parameters_callback(check)
     results = node.set_parameters([Parameter("speed", Parameter.Type.DOUBLE, 0.9), Parameter("speed", value=0.25)])
     assert [r.successful for r in results] == [False, True] and results[0].reason == "at most 0.3"
-    _until(lambda: "/tuned" in _node_names(core), what="/tuned to register")  # registration is asynchronous
+    until(lambda: "/tuned" in _node_names(core), what="/tuned to register")  # registration is asynchronous
     body = json.dumps({"parameters": [{"name": "speed", "value": {"type": 3, "double_value": 0.3}}]}).encode()
     request = urllib.request.Request(core.url + "/tuned/set_parameters", data=body, method="POST",
                                      headers={"Content-Type": "application/json"})  # fmt: skip
@@ -254,7 +237,7 @@ def test_destroy_node_ends_spin_and_leaves_the_graph(rclpy, core: System) -> Non
     node.destroy_node()
     spinner.join(5)
     assert not spinner.is_alive()
-    _until(lambda: "/robot3/short_lived" not in _node_names(core), what="the node to leave the graph")
+    until(lambda: "/robot3/short_lived" not in _node_names(core), what="the node to leave the graph")
 
 
 def _node_names(core: System) -> set[str]:

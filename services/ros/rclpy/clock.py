@@ -8,14 +8,13 @@ from __future__ import annotations
 
 import time as _time
 
+from services.ros.pacing import sleep_until
 from services.ros.rclpy.clock_type import ClockType
-from services.ros.rclpy.duration import S_TO_NS, Duration
+from services.ros.rclpy.duration import Duration
 from services.ros.rclpy.time import Time
 from services.runtime.clock import Clock as RuntimeClock
 
 __all__ = ["Clock", "ClockType", "ROSClock"]
-
-_SIM_POLL_S = 0.002  # how often a sleep on sim time looks at the clock again
 
 
 class Clock:
@@ -53,15 +52,12 @@ class Clock:
 
         if until.clock_type != self._clock_type:
             raise ValueError("until's clock type does not match this clock's type")
-        while default_context.ok():
-            left_ns = until.nanoseconds - self.now().nanoseconds
-            if left_ns <= 0:
-                return True
-            if self.ros_time_is_active:
-                _time.sleep(_SIM_POLL_S)
-            else:
-                _time.sleep(min(left_ns / S_TO_NS, 0.1))
-        return False
+        return sleep_until(
+            lambda: self.now().nanoseconds,
+            until.nanoseconds,
+            sim_time=lambda: self.ros_time_is_active,
+            ok=default_context.ok,
+        )
 
     def sleep_for(self, rel_time: Duration) -> bool:
         """Block for ``rel_time`` on this clock; True when it passed."""

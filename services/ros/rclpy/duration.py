@@ -8,11 +8,10 @@ from __future__ import annotations
 
 from typing import Any
 
+from services.ros.pacing import S_TO_NS
 from shared_models.builtin_interfaces import Duration as DurationMsg
 
 __all__ = ["Duration", "NanosecondsOrder", "S_TO_NS"]
-
-S_TO_NS = 1_000_000_000
 
 
 class NanosecondsOrder:

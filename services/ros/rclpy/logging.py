@@ -11,12 +11,22 @@ import logging as _logging
 import threading
 import time as _time
 from enum import IntEnum
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from services.runtime.logger import NodeLogger
 from shared_models.rcl_interfaces import Log
 
-__all__ = ["LoggingSeverity", "RcutilsLogger", "get_logger", "get_logging_severity_from_string", "set_logger_level"]
+if TYPE_CHECKING:
+    from services.runtime.node import Node as RuntimeNode
+
+__all__ = [
+    "LoggingSeverity",
+    "RcutilsLogger",
+    "get_logger",
+    "get_logging_severity_from_string",
+    "node_logger",
+    "set_logger_level",
+]
 
 
 class LoggingSeverity(IntEnum):
@@ -121,6 +131,21 @@ class RcutilsLogger:
                     return False
                 seen["last"] = now
         return True
+
+
+def node_logger(node: RuntimeNode, *, rosout: bool = True) -> RcutilsLogger:
+    """The logger of an SDK node a façade made: it prints, and (with ``rosout``) publishes each
+    line on /rosout from whatever thread logs it."""
+    from services.ros.bridge import bridge
+
+    publisher = node.rosout_publisher
+    lines = NodeLogger(
+        node.get_name(),
+        lambda: node.get_clock().now().to_msg(),
+        (lambda log: bridge.call_soon(publisher.publish, log)) if rosout else (lambda log: None),
+        level=node.settings.log_level,
+    )
+    return RcutilsLogger(node.get_name().lstrip("/").replace("/", "."), lines)
 
 
 _loggers: dict[str, RcutilsLogger] = {}

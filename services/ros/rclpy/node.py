@@ -13,17 +13,17 @@ bridge's loop. Callbacks run where the program spins the node (:mod:`~services.r
 
 from __future__ import annotations
 
-import time as _time
 from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
 from services.ros.bridge import bridge
 from services.ros.errors import NotProvidedError, not_provided
+from services.ros.pacing import wait_for_first_clock
 from services.ros.rclpy.callback_groups import CallbackGroup, MutuallyExclusiveCallbackGroup
 from services.ros.rclpy.client import Client
 from services.ros.rclpy.clock import Clock, ROSClock
 from services.ros.rclpy.context import Context, default_context
-from services.ros.rclpy.logging import RcutilsLogger
+from services.ros.rclpy.logging import RcutilsLogger, node_logger
 from services.ros.rclpy.publisher import Publisher
 from services.ros.rclpy.qos import qos_profile
 from services.ros.rclpy.service import Service
@@ -31,15 +31,12 @@ from services.ros.rclpy.subscription import Subscription
 from services.ros.rclpy.timer import Rate, Timer
 from services.ros.rclpy.waitable import JobQueue, Waitable
 from services.ros.tracebacks import user_traceback
-from services.runtime.logger import NodeLogger
 from services.runtime.node import Node as RuntimeNode
 from services.runtime.parameter import Parameter
 from shared_models import Message, ServiceType
 from shared_models.rcl_interfaces import ParameterDescriptor, SetParametersResult
 
 __all__ = ["Node"]
-
-_FIRST_CLOCK_WAIT_S = 2.0
 
 # rclpy Node methods Skydeck does not have: named, rather than a bare AttributeError.
 _NOT_PROVIDED = frozenset(
@@ -92,26 +89,10 @@ class Node:
         self._rclpy_jobs = JobQueue(self, None, "a done callback")
         self._rclpy_default_group: CallbackGroup = MutuallyExclusiveCallbackGroup()
         self._rclpy_clock = ROSClock(node.get_clock())
-        rosout = node.rosout_publisher
-        node_logger = NodeLogger(
-            node.get_name(),
-            lambda: node.get_clock().now().to_msg(),
-            (lambda log: bridge.call_soon(rosout.publish, log)) if enable_rosout else (lambda log: None),
-            level=node.settings.log_level,
-        )
-        self._rclpy_logger = RcutilsLogger(node.get_name().lstrip("/").replace("/", "."), node_logger)
+        self._rclpy_logger = node_logger(node, rosout=enable_rosout)
         self._rclpy_destroyed = False
         bridge.start_node(node)
-        self._rclpy_wait_for_sim_time()
-
-    def _rclpy_wait_for_sim_time(self) -> None:
-        """With ``use_sim_time``, wait (a moment at most) for the first /clock: ROS time reads
-        zero until then, and a program that takes ``now()`` at start (a timed leg, a timeout)
-        would otherwise measure from zero, a classic stumble with rclpy."""
-        clock = self._rclpy_node.get_clock()
-        deadline = _time.monotonic() + _FIRST_CLOCK_WAIT_S
-        while clock.use_sim_time and clock.now().nanoseconds == 0 and _time.monotonic() < deadline:
-            _time.sleep(0.005)
+        wait_for_first_clock(node.get_clock())
 
     def __getattr__(self, name: str) -> Any:
         if name in _NOT_PROVIDED:

@@ -8,12 +8,12 @@ it ticks again is not queued twice (ticks are skipped, as ROS's timers skip them
 
 from __future__ import annotations
 
-import time as _time
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from services.ros.bridge import bridge
 from services.ros.errors import RosFacadeError
+from services.ros.pacing import LoopSchedule
 from services.ros.rclpy.callback_groups import CallbackGroup
 from services.ros.rclpy.clock import Clock
 from services.ros.rclpy.duration import S_TO_NS
@@ -106,16 +106,14 @@ class Rate:
     """Sleeps so that a loop runs at ``frequency`` Hz on the node's clock (sim time too).
 
     Works from the main thread while another thread spins, and also when nothing spins (the
-    clock is the bridge's, not the executor's). A sleep that finds itself behind by more than a
-    period starts the schedule over from now instead of bursting.
+    clock is the bridge's, not the executor's). The schedule is :class:`~services.ros.pacing.LoopSchedule`.
     """
 
     def __init__(self, frequency: float, clock: Clock) -> None:
         if not frequency > 0:
             raise ValueError(f"a Rate's frequency must be positive Hz, got {frequency!r}")
-        self._period_ns = int(S_TO_NS / frequency)
         self._clock = clock
-        self._next_ns = clock.now().nanoseconds + self._period_ns
+        self._schedule = LoopSchedule(int(S_TO_NS / frequency), lambda: clock.now().nanoseconds)
         self._destroyed = False
 
     def sleep(self) -> None:
@@ -124,20 +122,8 @@ class Rate:
 
         if self._destroyed:
             raise ROSInterruptException("this Rate was destroyed")
-        now = self._clock.now().nanoseconds
-        if now - self._next_ns > self._period_ns:  # far behind (or the clock jumped): start over
-            self._next_ns = now
-        while True:
-            if not default_context.ok():
-                raise ROSInterruptException("rclpy was shut down during a Rate's sleep")
-            now = self._clock.now().nanoseconds
-            left_ns = self._next_ns - now
-            if left_ns <= 0:
-                break
-            if left_ns > self._period_ns:  # the clock went back (a simulator reset): from now on
-                self._next_ns = now + self._period_ns
-            _time.sleep(min(left_ns / S_TO_NS, 0.1) if not self._clock.ros_time_is_active else 0.002)
-        self._next_ns += self._period_ns
+        if not self._schedule.sleep(sim_time=lambda: self._clock.ros_time_is_active, ok=default_context.ok):
+            raise ROSInterruptException("rclpy was shut down during a Rate's sleep")
 
     def destroy(self) -> None:
         self._destroyed = True

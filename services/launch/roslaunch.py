@@ -1,0 +1,119 @@
+"""roslaunch XML files: ``skydeck launch path/to/nodes.launch [name:=value ...]`` (``roslaunch``).
+
+    <launch>
+      <arg name="use_sim_time" default="true"/>
+      <param name="/use_sim_time" value="$(arg use_sim_time)"/>
+      <group ns="robot1">
+        <remap from="scan" to="base_scan"/>
+        <node name="perception" pkg="ros_workshop" type="perception.py" output="screen" args="--fast">
+          <param name="rate" value="10"/>          <!-- private: /robot1/perception/rate -->
+        </node>
+      </group>
+      <include file="$(find ros_workshop)/launch/more.launch"><arg name="x" value="1"/></include>
+    </launch>
+
+Read here: ``<launch>``, ``<node>`` (name, pkg, type, args, ns, respawn, output; its ``<param>``,
+``<rosparam>``, ``<remap>``, ``<env>``), ``<param>`` (value, type, textfile), ``<rosparam>``
+(inline YAML or ``command="load" file=``, ``param``, ``ns``, ``subst_value``), ``<arg>`` (default,
+value; ``name:=value`` on the command line or in an ``<include>``), ``<remap>``, ``<env>``,
+``<group ns>``, ``<include file ns pass_all_args>``, ``if``/``unless`` on every tag, and the
+substitutions ``$(arg)``, ``$(find)``, ``$(env)``, ``$(optenv)``, ``$(dirname)``, ``$(anon)``.
+A node's ``type`` is a Python file of its package (:mod:`services.launch.ros_packages`).
+
+What it becomes (:meth:`RosLaunch.spec`): one launch for the supervisor that runs YAML launch
+files, each node ``skydeck run FILE.py`` with ROS 1's arguments as roslaunch passes them
+(``__name:=``, ``__ns:=``, ``from:=to``), on base port + 2, + 3, ... in file order (the core,
+when this launch starts it, on the base port); and the parameters, which the supervisor sets on
+the core's parameter server before it starts a node. Every error is one line naming the file and
+the line; an attribute Skydeck does not use is a warning, a tag it does not know an error.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from services.launch.errors import LaunchFileError
+from services.launch.spec import LaunchSpec, NodeSpec
+
+__all__ = ["NODE_PORT_OFFSET", "RosLaunch", "RosNode", "is_roslaunch_file", "load_roslaunch_file"]
+
+NODE_PORT_OFFSET = 2
+"""The first node's port is the base port + this (+1 is the simulator's, as in the workshop's)."""
+_READY_TIMEOUT_S = 30.0
+_SUFFIXES = (".launch", ".xml")
+
+
+def is_roslaunch_file(path: Path) -> bool:
+    """Whether ``path`` is a roslaunch XML file (``.launch`` or ``.xml``) rather than a YAML launch."""
+    return path.suffix in _SUFFIXES
+
+
+@dataclass(frozen=True)
+class RosNode:
+    """One ``<node>``: its graph name, its program and what the program is given."""
+
+    name: str
+    program: Path
+    args: tuple[str, ...]
+    env: tuple[tuple[str, str], ...]
+    respawn: bool
+    place: str
+
+    @property
+    def launch_name(self) -> str:
+        """The name the launch shows and ``--exclude`` takes: the graph name without its first ``/``."""
+        return self.name.lstrip("/")
+
+
+@dataclass(frozen=True)
+class RosLaunch:
+    """What a roslaunch file asks for: its nodes, its parameters (absolute names, in file order)
+    and the warnings about what it says that Skydeck does not use."""
+
+    file: Path
+    nodes: tuple[RosNode, ...]
+    parameters: tuple[tuple[str, Any], ...]
+    warnings: tuple[str, ...]
+
+    def spec(self, *, start_core: bool) -> LaunchSpec:
+        """The launch the supervisor runs: the core first if ``start_core``, then every node."""
+        nodes = [NodeSpec(name="core", run="core", port_offset=0)] if start_core else []
+        for index, node in enumerate(self.nodes):
+            if node.launch_name == "launch" or (start_core and node.launch_name == "core"):
+                raise LaunchFileError(
+                    self.file, f"{node.place}: a node named {node.name} clashes with skydeck launch's own; rename it"
+                )
+            nodes.append(
+                NodeSpec(
+                    name=node.launch_name,
+                    run=str(node.program),
+                    port_offset=NODE_PORT_OFFSET + index,
+                    args=tuple(_literal(arg) for arg in node.args),
+                    env={key: _literal(value) for key, value in node.env},
+                    respawn=node.respawn,
+                    ready_timeout_s=_READY_TIMEOUT_S,
+                )
+            )
+        if not nodes:
+            raise LaunchFileError(self.file, "the launch file starts no node (and a core already runs)")
+        return LaunchSpec(nodes=tuple(nodes))
+
+
+def _literal(text: str) -> str:
+    """``text`` as a YAML launch's argument: braces there are placeholders, here they are text."""
+    return text.replace("{", "{{").replace("}", "}}")
+
+
+def load_roslaunch_file(path: str | Path, args: Mapping[str, str] | None = None) -> RosLaunch:
+    """Read a roslaunch file, with ``args`` as its command line's ``name:=value``.
+
+    Raises ``LaunchFileError`` with one line naming the file, the line and the problem.
+    """
+    from services.launch.roslaunch_reader import read_roslaunch
+
+    path = Path(path).resolve() if Path(path).exists() else Path(path)
+    nodes, parameters, warnings = read_roslaunch(path, dict(args or {}))
+    return RosLaunch(path, tuple(nodes), tuple(parameters), tuple(warnings))
