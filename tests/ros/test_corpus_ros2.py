@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import subprocess
 import sys
 from collections.abc import Callable, Iterator
@@ -55,16 +56,20 @@ def _sim_seconds_later(system: System, seconds: float) -> None:
     wait_for(system, "/odom", lambda m: stamp_s(m) > start + seconds, timeout_s=60)
 
 
+HEADER = "std_msgs.msg.Header("
+
+
 def test_the_seeds_sender_and_receiver_talk(room: System) -> None:
     with (
         ros_file(room, ROS2 / "send_message.py", sim_time=False) as sender,
         ros_file(room, ROS2 / "receive_message.py", sim_time=False) as receiver,
     ):
-        receiver.wait_for_line(_nth(11, lambda line: line.startswith("seq=")), 60)
-        sender.wait_for_line("point=Point(x=1.0, y=2.0, z=0.0)", 10)
-    headers = [line for line in receiver.lines if line.startswith("seq=")]
-    assert len(headers) >= 11 and all("frame_id='odom'" in line for line in headers)
-    seqs = [int(line.split()[0].removeprefix("seq=")) for line in headers]
+        receiver.wait_for_line(_nth(11, lambda line: line.startswith(HEADER)), 60)
+        sender.wait_for_line("point=geometry_msgs.msg.Point(x=1.0, y=2.0, z=0.0))", 10)
+    # print(msg.header) prints rclpy's repr: std_msgs.msg.Header(seq=..., stamp=..., frame_id='odom')
+    headers = [line for line in receiver.lines if line.startswith(HEADER)]
+    assert len(headers) >= 11 and all(line.endswith("frame_id='odom')") for line in headers)
+    seqs = [int(re.search(r"seq=(\d+)", line).group(1)) for line in headers]  # type: ignore[union-attr]
     assert seqs == sorted(seqs) and len(set(seqs)) == len(seqs)  # in order, none twice
 
 
