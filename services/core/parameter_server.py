@@ -100,9 +100,13 @@ def _tree(request: Request) -> ParameterTree:
 
 TreeDep = Annotated[ParameterTree, Depends(_tree)]
 
+# A name that is not a ROS name is a 422 like any other invalid input; an unset one is a 404.
+_BAD_NAME = {422: {"description": "Not a ROS parameter name (letters, digits and _ between slashes)"}}
+_UNSET = {404: {"description": "No such parameter"}}
 
-@router.get("")
-@router.get("/{name:path}")
+
+@router.get("", responses=_UNSET | _BAD_NAME)
+@router.get("/{name:path}", responses=_UNSET | _BAD_NAME)
 async def get_parameter(tree: TreeDep, name: str = "") -> NamedValue:
     """A parameter's value; a namespace's is the mapping of what is under it."""
     full = "/" + name.strip("/")
@@ -111,22 +115,22 @@ async def get_parameter(tree: TreeDep, name: str = "") -> NamedValue:
     except KeyError:
         raise HTTPException(404, f"no parameter {full}: see GET /api/rosparam for all") from None
     except ValueError as error:
-        raise HTTPException(400, str(error)) from None
+        raise HTTPException(422, str(error)) from None
 
 
-@router.put("", dependencies=[Depends(token_required)])
-@router.put("/{name:path}", dependencies=[Depends(token_required)])
+@router.put("", dependencies=[Depends(token_required)], responses=_BAD_NAME)
+@router.put("/{name:path}", dependencies=[Depends(token_required)], responses=_BAD_NAME)
 async def set_parameter(body: ParameterValue, tree: TreeDep, name: str = "") -> NamedValue:
     """Set a parameter (a mapping sets the whole namespace under the name)."""
     full = "/" + name.strip("/")
     try:
         tree.set(full, body.value)
     except ValueError as error:
-        raise HTTPException(400, str(error)) from None
+        raise HTTPException(422, str(error)) from None
     return NamedValue(name=full, value=body.value)
 
 
-@router.delete("/{name:path}", dependencies=[Depends(token_required)])
+@router.delete("/{name:path}", dependencies=[Depends(token_required)], responses=_UNSET | _BAD_NAME)
 async def delete_parameter(tree: TreeDep, name: str) -> NamedValue:
     """Delete a parameter and everything under it; the answer holds what was deleted."""
     full = "/" + name.strip("/")
@@ -136,5 +140,5 @@ async def delete_parameter(tree: TreeDep, name: str) -> NamedValue:
     except KeyError:
         raise HTTPException(404, f"no parameter {full}") from None
     except ValueError as error:
-        raise HTTPException(400, str(error)) from None
+        raise HTTPException(422, str(error)) from None
     return NamedValue(name=full, value=value)
