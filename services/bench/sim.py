@@ -6,7 +6,9 @@ world), registered with a core and publishing at its stated rates (drone: pose a
 of sim time, boxes 10 Hz, state 5 Hz; robot: odom, bump, tf and clock 30 Hz, scan 5 Hz, truth
 10 Hz). RTF = sim-time advance / wall time, read from the node's ``/clock`` (GET, the latest
 message) at both ends of a window after the world has settled: once with nobody subscribed,
-once with a subscriber node reading ``/drone/pose`` (drone) or ``/scan`` (robot). The references
+once with a subscriber node reading ``/drone/pose`` (drone) or ``/scan`` (robot); and, with
+the subscriber, per second of the simulator process's CPU time (/proc), which a loaded machine
+does not change. The references
 are :func:`sim_server.speed.measure`'s bare ``stepSimulation`` loop and
 :func:`sim_server.robot.speed.measure`'s bare loop casting the same rays, each in its own process.
 """
@@ -63,6 +65,7 @@ def measure_robot_bare(*, steps: int, seed: int = 1) -> dict[str, float]:
         "world_rtf": reading["world_steps_per_s"] / PHYSICS_HZ,
         "scan_ms": reading["scan_ms"],
         "bare_scan_ms": reading["bare_scan_ms"],
+        "bare_rtf_cpu": reading["bare_steps_per_cpu_s"] / PHYSICS_HZ,
     }
 
 
@@ -79,7 +82,7 @@ def measure_node(
         wait_http(f"{url}/health", 60.0, what="simulator node", worker=sim)
         wait_http(f"{url}/clock", 30.0, what="simulator /clock", worker=sim)
         time.sleep(_SETTLE_S)
-        result: dict[str, Any] = {"rtf_alone": _rtf(client, url, window_s)}
+        result: dict[str, Any] = {"rtf_alone": _rtf(client, url, window_s, sim)[0]}
         if subscriber:
             topic, type_name = _WATCHED[world]
             with Worker(
@@ -87,7 +90,7 @@ def measure_node(
             ) as sub:
                 sub.expect("READY", 30.0)
                 time.sleep(_SETTLE_S)  # the link is up within a fraction of a second
-                result["rtf_subscribed"] = _rtf(client, url, window_s)
+                result["rtf_subscribed"], result["rtf_subscribed_cpu"] = _rtf(client, url, window_s, sim)
                 sub.send("stop")
                 received = sub.expect("RESULT", 10.0)
             if received["received"] == 0:
@@ -102,8 +105,11 @@ def _sim_time_s(client: httpx.Client, url: str) -> tuple[float, float]:
     return stamp["sec"] + stamp["nanosec"] * 1e-9, wall
 
 
-def _rtf(client: httpx.Client, url: str, window_s: float) -> float:
+def _rtf(client: httpx.Client, url: str, window_s: float, sim: Worker) -> tuple[float, float]:
+    """Sim seconds per wall second, and per second of the simulator process's CPU time."""
+    cpu0 = sim.cpu_seconds()
     sim0, wall0 = _sim_time_s(client, url)
     time.sleep(window_s)
     sim1, wall1 = _sim_time_s(client, url)
-    return (sim1 - sim0) / (wall1 - wall0)
+    cpu1 = sim.cpu_seconds()
+    return (sim1 - sim0) / (wall1 - wall0), (sim1 - sim0) / max(cpu1 - cpu0, 1e-3)

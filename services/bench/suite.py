@@ -358,14 +358,18 @@ class Suite:
             world = Result("robot_world_rtf", median_of(readings["bare"], "world_rtf"), "x real time", reference, bare,
                            target="- (RobotWorld class, no node, driving and scanning)",
                            samples=[r["world_rtf"] for r in readings["bare"]])  # fmt: skip
+            per_cpu = Result("robot_rtf_per_cpu", median_of(node, "rtf_subscribed_cpu"), "x CPU time", reference,
+                             median_of(readings["bare"], "bare_rtf_cpu"),
+                             target="- (sim s per CPU s of the process: robot_rtf with a core to itself, on a loaded machine)",
+                             samples=[r["rtf_subscribed_cpu"] for r in node])  # fmt: skip
             scan = Result("robot_scan_ms", median_of(readings["bare"], "scan_ms"), "ms a scan",
                           "one bare rayTestBatch of the same 360 rays", median_of(readings["bare"], "bare_scan_ms"),
                           target="- (360 beams, one batched ray test, 5 Hz of sim time)",
                           samples=[r["scan_ms"] for r in readings["bare"]])  # fmt: skip
-            return [rtf, alone, world, scan]
+            return [rtf, alone, world, per_cpu, scan]
 
         return Family("robot", trials, s.sim_repetitions, summarise,
-                      rows=("robot_rtf", "robot_rtf_no_subscriber", "robot_world_rtf", "robot_scan_ms"))  # fmt: skip
+                      rows=("robot_rtf", "robot_rtf_no_subscriber", "robot_world_rtf", "robot_rtf_per_cpu", "robot_scan_ms"))  # fmt: skip
 
     def _rtf_by_boxes(self) -> Family:
         from services.bench.sim import measure_bare, measure_node

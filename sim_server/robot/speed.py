@@ -27,12 +27,16 @@ _SETTLE_STEPS = PHYSICS_HZ
 class RobotSpeedReading:
     """Physics steps per second of the world (driving, scanning at 5 Hz of sim time, reading its
     bumper and odometry at 30 Hz) and of a bare loop (stepSimulation, and the same 360-ray
-    rayTestBatch every SCAN_EVERY_STEPS steps); milliseconds per scan in each."""
+    rayTestBatch every SCAN_EVERY_STEPS steps); milliseconds per scan in each. The ``_cpu_s``
+    rates are per second of this process's CPU time: what each would reach with a core to
+    itself, whatever else the machine is doing."""
 
     world_steps_per_s: float
     bare_steps_per_s: float
     scan_ms: float
     bare_scan_ms: float
+    world_steps_per_cpu_s: float
+    bare_steps_per_cpu_s: float
 
     @property
     def real_time_factor(self) -> float:
@@ -42,14 +46,34 @@ class RobotSpeedReading:
 
 def measure(*, seed: int = 1, robots: int = 1, steps: int = 4800, repeats: int = 3) -> RobotSpeedReading:
     """Best of ``repeats`` runs of ``steps`` steps for the world and for the bare loop."""
-    best_world = best_bare = 0.0
-    scan_ms = bare_scan_ms = float("inf")
-    for _ in range(repeats):
-        rate, scan = _world_rate(seed, robots, steps)
-        best_world, scan_ms = max(best_world, rate), min(scan_ms, scan)
-        rate, scan = _bare_rate(seed, robots, steps)
-        best_bare, bare_scan_ms = max(best_bare, rate), min(bare_scan_ms, scan)
-    return RobotSpeedReading(best_world, best_bare, scan_ms, bare_scan_ms)
+    world = [_world_rate(seed, robots, steps) for _ in range(repeats)]
+    bare = [_bare_rate(seed, robots, steps) for _ in range(repeats)]
+    return RobotSpeedReading(
+        world_steps_per_s=max(r.steps_per_s for r in world),
+        bare_steps_per_s=max(r.steps_per_s for r in bare),
+        scan_ms=min(r.scan_ms for r in world),
+        bare_scan_ms=min(r.scan_ms for r in bare),
+        world_steps_per_cpu_s=max(r.steps_per_cpu_s for r in world),
+        bare_steps_per_cpu_s=max(r.steps_per_cpu_s for r in bare),
+    )
+
+
+@dataclass(frozen=True, slots=True)
+class _Run:
+    steps_per_s: float
+    steps_per_cpu_s: float
+    scan_ms: float
+
+
+class _Clocks:
+    """Wall and CPU time of a run, started together."""
+
+    def __init__(self) -> None:
+        self.wall, self.cpu = time.perf_counter(), time.process_time()
+
+    def run(self, steps: int, scan_s: float, scans: int) -> _Run:
+        wall, cpu = time.perf_counter() - self.wall, time.process_time() - self.cpu
+        return _Run(steps / wall, steps / max(cpu, 1e-9), 1e3 * scan_s / max(scans, 1))
 
 
 def _settled(seed: int, robots: int) -> RobotWorld:
@@ -58,12 +82,12 @@ def _settled(seed: int, robots: int) -> RobotWorld:
     return world
 
 
-def _world_rate(seed: int, robots: int, steps: int) -> tuple[float, float]:
+def _world_rate(seed: int, robots: int, steps: int) -> _Run:
     """The world as the simulator node drives it: commands, bumper, scans; no messages."""
     with _settled(seed, robots) as world:
         scan_s = 0.0
         scans = 0
-        start = time.perf_counter()
+        clocks = _Clocks()
         for done in range(0, steps, ODOM_EVERY_STEPS):
             for robot in range(robots):
                 world.set_cmd_vel(robot, 0.2, 0.4)  # an arc: the wheels and the laser at work
@@ -76,11 +100,10 @@ def _world_rate(seed: int, robots: int, steps: int) -> tuple[float, float]:
                     world.scan(robot)
                 scan_s += time.perf_counter() - t0
                 scans += robots
-        elapsed = time.perf_counter() - start
-        return steps / elapsed, 1e3 * scan_s / max(scans, 1)
+        return clocks.run(steps, scan_s, scans)
 
 
-def _bare_rate(seed: int, robots: int, steps: int) -> tuple[float, float]:
+def _bare_rate(seed: int, robots: int, steps: int) -> _Run:
     """stepSimulation, and every SCAN_EVERY_STEPS steps the very rays of each robot's scan, in
     one rayTestBatch each: the least any program simulating this scene could do."""
     with _settled(seed, robots) as world:
@@ -93,7 +116,7 @@ def _bare_rate(seed: int, robots: int, steps: int) -> tuple[float, float]:
         step_simulation, ray_test = p.stepSimulation, p.rayTestBatch
         scan_s = 0.0
         scans = 0
-        start = time.perf_counter()
+        clocks = _Clocks()
         for done in range(1, steps + 1):
             step_simulation(physicsClientId=client)
             if done % SCAN_EVERY_STEPS == 0:
@@ -102,8 +125,7 @@ def _bare_rate(seed: int, robots: int, steps: int) -> tuple[float, float]:
                     ray_test(start_points, end_points, physicsClientId=client)
                 scan_s += time.perf_counter() - t0
                 scans += robots
-        elapsed = time.perf_counter() - start
-        return steps / elapsed, 1e3 * scan_s / max(scans, 1)
+        return clocks.run(steps, scan_s, scans)
 
 
 def main() -> None:
@@ -115,7 +137,8 @@ def main() -> None:
     reading = measure(robots=args.robots, steps=args.steps)
     print(
         f"robot world: {reading.real_time_factor:.1f}x real time, {reading.scan_ms:.2f} ms a scan; "
-        f"bare loop: {reading.bare_steps_per_s / PHYSICS_HZ:.1f}x, {reading.bare_scan_ms:.2f} ms a scan"
+        f"bare loop: {reading.bare_steps_per_s / PHYSICS_HZ:.1f}x, {reading.bare_scan_ms:.2f} ms a scan; "
+        f"per CPU second: world {reading.world_steps_per_cpu_s / PHYSICS_HZ:.1f}x, bare {reading.bare_steps_per_cpu_s / PHYSICS_HZ:.1f}x"
     )
 
 

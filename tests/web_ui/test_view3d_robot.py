@@ -254,3 +254,28 @@ def test_frame_time_with_a_scan_odometry_and_500_markers(dashboard, system: Syst
     assert markers["objects"] == 500 and markers["status"]["level"] == "ok"
     assert recorder.errors == []
 
+
+
+def test_the_grid_and_the_fixed_frames_axes(dashboard) -> None:  # type: ignore[no-untyped-def]
+    """Red x, green y, blue z at the fixed frame's origin, whichever frame is fixed; the grid's
+    box hides the grid, and the choice survives a reload."""
+    page, _ = dashboard
+    for frame in ("map", "base_link"):
+        page.select_option("#view3d-fixed-frame", frame)
+        v = wait_view(page, f"v.fixedFrame === {frame!r}")
+        axes = v["axes"]
+        assert axes["shown"] and v["grid"]
+        (x, _, _), (_, y, _), (_, _, z) = axes["tips"]
+        assert x > 0 and y > 0 and z > 0, axes["tips"]
+        assert [abs(c) for c in axes["tips"][0][1:]] == [0, 0], "the red axis lies along +x"
+        assert [abs(c) for c in (axes["tips"][1][0], axes["tips"][1][2])] == [0, 0], "the green along +y"
+        if frame == "base_link":
+            assert v["world"]["robot"]["robot"] == [0, 0, 0], "the axes are where the fixed frame is"
+    grid = page.locator("#view3d-displays li[data-display=grid] [data-action=visible]")
+    grid.uncheck()
+    wait_view(page, "!v.grid")
+    page.reload()
+    open_3d(page)
+    v = wait_view(page, "v.fixedFrame === 'base_link'")
+    assert v["grid"] is False and v["axes"]["shown"]
+    assert page.locator("#view3d-displays li[data-display=grid] [data-action=visible]").is_checked() is False

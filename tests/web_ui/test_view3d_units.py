@@ -226,3 +226,24 @@ def test_a_scan_draws_only_real_returns(page) -> None:  # type: ignore[no-untype
     # and a non-number are not drawn.
     assert result["points"] == [[1, 0, 0], [2, 0, 0]]
     assert "1 ranges were not numbers and were skipped" in result["status"]
+
+
+def test_a_scan_is_coloured_by_range_from_red_near_to_violet_far(page) -> None:  # type: ignore[no-untyped-def]
+    result = page.evaluate(
+        """async () => {
+        const { createDisplay } = await import('/static/js/view3d/displays/index.js');
+        const d = createDisplay('/s', 'sensor_msgs/msg/LaserScan', { color: '#00ff00' }, {});
+        d.receive({ header: { frame_id: 'laser' }, angle_min: 0, angle_increment: Math.PI / 2, range_min: 0.2, range_max: 5,
+                    ranges: [0.2, 2.6, 5, 0] });
+        d.update({ now: 0, fixedFrame: 'laser', lookup: (f, s, out) => ({ matrix: out.identity(), clockNote: '', ahead: 0 }) });
+        const colours = () => Array.from(d.geometry.attributes.color.array.slice(0, 9), (c) => Math.round(c * 1000) / 1000);
+        const byRange = colours();
+        d.setOption('byRange', false);
+        return { byRange, flat: colours() };
+    }"""
+    )
+    red, middle, violet = (result["byRange"][i : i + 3] for i in (0, 3, 6))
+    assert red == [1, 0, 0], "range_min is red"
+    assert violet == [0.5, 0, 1], "range_max is violet (hue 270)"
+    assert middle[1] > 0.9 and middle[0] < 0.1, "half way is green-cyan (hue 135)"
+    assert result["flat"] == [0, 1, 0] * 3, "colour by range off: the display's colour"

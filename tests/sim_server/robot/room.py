@@ -85,6 +85,11 @@ def stamp_s(message: dict[str, Any]) -> float:
     return stamp["sec"] + stamp["nanosec"] * 1e-9
 
 
+def clock_s(message: dict[str, Any]) -> float:
+    """A /clock message (builtin_interfaces/Time) in seconds."""
+    return message["sec"] + message["nanosec"] * 1e-9  # type: ignore[no-any-return]
+
+
 def yaw_of(q: dict[str, float]) -> float:
     return math.atan2(2 * (q["w"] * q["z"] + q["x"] * q["y"]), 1 - 2 * (q["y"] ** 2 + q["z"] ** 2))
 

@@ -1,6 +1,7 @@
-// Keyboard teleop: publishes geometry_msgs/msg/Twist at 10 Hz while keys are held and one zero
-// Twist on release, on /drone/cmd_vel (world frame) in the drone world and on a robot's cmd_vel
-// (body frame) in the robot world. Off by default; keys typed into form fields never count.
+// Teleop from the keyboard or the on-screen pad: publishes geometry_msgs/msg/Twist at 10 Hz
+// while keys (or pad keys, pressed with the mouse or a finger) are held and one zero Twist on
+// release, on /drone/cmd_vel (world frame) in the drone world and on a robot's cmd_vel (body
+// frame) in the robot world. Off by default; keys typed into form fields never count.
 
 import { TopicSocket } from "./api.js";
 import { config } from "./config.js";
@@ -16,8 +17,8 @@ const SPEEDS = {
   robot: { min: 0.05, max: config.worlds.robot.max_linear_speed, step: 0.05, value: 0.2 },
 };
 const NOTES = {
-  drone: "On: WASD / arrows move (as on the map), R/F up/down, Q/E yaw, space stops. Typing in a field never drives.",
-  robot: "On: W/S or ↑/↓ drive forward / back, A/D or ←/→ (and Q/E) turn; hold two for an arc; space stops. Typing in a field never drives.",
+  drone: "On: WASD / arrows move (as on the map), R/F up/down, Q/E yaw, space stops; or hold the keys above. Typing in a field never drives.",
+  robot: "On: W/S or ↑/↓ drive forward / back, A/D or ←/→ (and Q/E) turn; hold two for an arc; space stops; or hold the keys above. Typing in a field never drives.",
 };
 
 // Key -> action. Directions are the map's: up is +y, right is +x (cmd_vel is world frame).
@@ -55,6 +56,11 @@ export class Teleop {
     speed.addEventListener("input", () => {
       speedLabel.textContent = Number(speed.value).toFixed(this.kind === "robot" ? 2 : 1);
     });
+    // The pad: each key of keysView is a button held down while pressed (pointer capture, so
+    // sliding off it and letting go still releases it); its "stop" key stops, as space does.
+    keysView.addEventListener("pointerdown", (event) => this._pad(event, true));
+    keysView.addEventListener("pointerup", (event) => this._pad(event, false));
+    keysView.addEventListener("pointercancel", (event) => this._pad(event, false));
     window.addEventListener("keydown", (event) => this._key(event, true));
     window.addEventListener("keyup", (event) => this._key(event, false));
     window.addEventListener("blur", () => this._releaseAll());
@@ -130,6 +136,22 @@ export class Teleop {
     const action = KEYS[event.code];
     if (!action) return;
     event.preventDefault();
+    this._hold(action, down);
+  }
+
+  _pad(event, down) {
+    const key = event.target instanceof Element ? event.target.closest("kbd[data-key]") : null;
+    if (!this.enabled || !key || !this.keysView.contains(key)) return;
+    event.preventDefault();
+    if (key.dataset.key === "stop") {
+      if (down) this._releaseAll();
+      return;
+    }
+    if (down) key.setPointerCapture(event.pointerId);
+    this._hold(key.dataset.key, down);
+  }
+
+  _hold(action, down) {
     if (down) this.held.add(action);
     else this.held.delete(action);
     this._showKeys();

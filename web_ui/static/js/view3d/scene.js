@@ -156,6 +156,17 @@ export class Scene3D {
     }
   }
 
+  /** For the debug hook: whether the fixed frame's axes and the grid are drawn, and where each
+   * axis ends (x, y, z in the fixed frame, metres; the axes grow with the world). */
+  axesState() {
+    this.fixedAxes.updateMatrixWorld(true);
+    const tips = this.fixedAxes.children.map((rod) => {
+      const tip = new THREE.Vector3(0, 0, 0.5).applyMatrix4(rod.matrixWorld);
+      return tip.toArray().map((v) => Math.round(v * 1000) / 1000);
+    });
+    return { shown: this.fixedAxes.visible && this.fixedAxes.parent === this.scene, tips };
+  }
+
   /** Camera position and orbit target as plain arrays (for the saved view). */
   cameraState() {
     return { position: this.camera.position.toArray(), target: this.controls.target.toArray() };

@@ -35,6 +35,8 @@ export class View3D {
     elements.followButton.addEventListener("click", () => this.setFollow(!this.follow));
     elements.reset.addEventListener("click", () => this.resetCamera());
     this.scene.controls.addEventListener("end", () => this._save());
+    // A change made just before a reload or a closed tab is kept: the pending save is written now.
+    window.addEventListener("pagehide", () => this._flushSave());
   }
 
   /** Subscribe to TF and the world, restore the last visit's settings. */
@@ -165,7 +167,14 @@ export class View3D {
 
   _save() {
     clearTimeout(this._saveTimer);
-    this._saveTimer = setTimeout(() => store(this.document()), SAVE_DELAY_MS);
+    this._saveTimer = setTimeout(() => this._flushSave(), SAVE_DELAY_MS);
+  }
+
+  _flushSave() {
+    if (!this._saveTimer) return;
+    clearTimeout(this._saveTimer);
+    this._saveTimer = 0;
+    store(this.document());
   }
 
   saveToFile() {
@@ -263,6 +272,7 @@ export class View3D {
       camera: { ...this.scene.cameraState(), follow: this.follow },
       world: this.world.snapshot(),
       grid: this.scene.grid.visible,
+      axes: this.scene.axesState(),
       displays: [...this.displays.values()].map((d) => d.snapshot()),
       frameStats: this.scene.stats.summary(statsFrames),
       softwareRendering: this.scene.software,
