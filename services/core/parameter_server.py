@@ -101,8 +101,8 @@ def _tree(request: Request) -> ParameterTree:
 TreeDep = Annotated[ParameterTree, Depends(_tree)]
 
 # A name that is not a ROS name is a 422 like any other invalid input; an unset one is a 404.
-_BAD_NAME = {422: {"description": "Not a ROS parameter name (letters, digits and _ between slashes)"}}
-_UNSET = {404: {"description": "No such parameter"}}
+_BAD_NAME: dict[int | str, dict[str, Any]] = {422: {"description": "Not a ROS parameter name (letters, digits and _ between slashes)"}}
+_UNSET: dict[int | str, dict[str, Any]] = {404: {"description": "No such parameter"}}
 
 
 @router.get("", responses=_UNSET | _BAD_NAME)
