@@ -8,12 +8,14 @@ import json
 import struct
 from typing import Any
 
+import httpx
 import pytest
 from websockets.asyncio.client import ClientConnection, connect
 from websockets.exceptions import ConnectionClosed
 from websockets.typing import Subprotocol
 
 from tests.conftest import wait_until
+from tests.services.cli.test_cli import skydeck
 from tests.services.core.protocols.conftest import Bridge
 
 pytestmark = pytest.mark.timeout(60)
@@ -193,3 +195,27 @@ async def test_connection_graph_updates_follow_changes(bridge: Bridge) -> None:
             assert provided["/demo/flash"][0].startswith("/rosbridge_client_")
         while "/demo/flash" not in (await receive(ws, "connectionGraphUpdate"))["removedServices"]:
             pass
+
+
+async def test_a_foxglove_client_is_a_node_in_the_graph_and_node_list(bridge: Bridge) -> None:
+    async with connect(bridge.foxglove_url, subprotocols=V1) as ws:
+        ids = await channels(ws)
+        await send(ws, op="subscribe", subscriptions=[{"id": 1, "channelId": ids["/drone/pose"]}])
+        await send(ws, op="advertise", channels=[{"id": 2, "topic": "/drone/cmd_vel", "encoding": "json", "schemaName": "geometry_msgs/msg/Twist"}])
+        await binary(ws, 0x01)
+        await wait_until(lambda: any(n.startswith("/foxglove_client_") for n in _publishers(bridge, "/drone/cmd_vel")), what="the publication")
+        async with httpx.AsyncClient() as http:
+            graph = (await http.get(bridge.core_url + "/api/graph")).json()
+        client = next(n for n in graph["nodes"] if n["name"].startswith("/foxglove_client_"))
+        assert client["client"].startswith("foxglove client 127.0.0.1:")
+        assert set(client["subscriptions"]) == {"/drone/pose", "/clock"}  # /clock: the server's time
+        assert client["publications"] == ["/drone/cmd_vel"]
+        code, out, _ = await skydeck(bridge.core_url, "node", "list")
+        assert code == 0 and client["name"] in out.split()
+        code, out, _ = await skydeck(bridge.core_url, "node", "info", client["name"])
+        assert code == 0 and "Client: foxglove client 127.0.0.1:" in out and "/drone/cmd_vel" in out
+    await wait_until(lambda: not any(n.startswith("/foxglove_client_") for n in bridge.core.registry.nodes), what="the client to leave")
+
+
+def _publishers(bridge: Bridge, topic: str) -> list[str]:
+    return [publisher.node for publisher in bridge.core.registry.publishers(topic)]
