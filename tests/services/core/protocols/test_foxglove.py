@@ -120,13 +120,15 @@ async def test_the_advertised_channels_follow_the_graph(bridge: Bridge) -> None:
     ],
 )
 async def test_bad_json_messages_get_a_status_and_the_connection_carries_on(bridge: Bridge, message: str, fragment: str) -> None:
-    async with connect(bridge.foxglove_url, subprotocols=V1) as ws:
+    async with connect(bridge.foxglove_url, subprotocols=V1) as ws, connect(bridge.foxglove_url, subprotocols=V1) as bystander:
         ids = await channels(ws)
+        await send(bystander, op="subscribe", subscriptions=[{"id": 9, "channelId": (await channels(bystander))["/drone/pose"]}])
         await ws.send(message)
         status = await receive(ws, "status")
         assert status["level"] == 2 and fragment in status["message"], status
         await send(ws, op="subscribe", subscriptions=[{"id": 5, "channelId": ids["/drone/pose"]}])
-        assert struct.unpack_from("<I", await binary(ws, 0x01), 1)[0] == 5
+        assert struct.unpack_from("<I", await binary(ws, 0x01), 1)[0] == 5  # still working
+        assert struct.unpack_from("<I", await binary(bystander, 0x01), 1)[0] == 9  # and so is everyone else
 
 
 async def test_bad_binary_messages_get_a_status(bridge: Bridge) -> None:
