@@ -124,6 +124,18 @@ def rosapi(ros: roslibpy.Ros) -> None:
     })
 
 
+def stuck(ros: roslibpy.Ros) -> None:
+    """Call /stuck/wait, which never answers, with no timeout in the request: the core's default
+    ends it with an error response, which roslibpy raises as ServiceException."""
+    service = roslibpy.Service(ros, "/stuck/wait", "std_srvs/srv/Trigger")
+    try:
+        service.call(roslibpy.ServiceRequest(), timeout=30)  # roslibpy's own wait, not sent
+        emit(stuck="answered?!")
+    except Exception as error:
+        emit(stuck=str(error), kind=type(error).__name__)
+    emit(after=ros.get_topic_type("/drone/pose"))  # the connection carries on
+
+
 def workshop(ros: roslibpy.Ros) -> None:
     """The real workshop system: read the pose, take off, watch the drone climb."""
     emit(pose=first_message(ros, "/drone/pose", "geometry_msgs/msg/PoseStamped"))
@@ -151,7 +163,7 @@ def main() -> None:
     ros.run(timeout=15)
     emit(connected=ros.is_connected)
     try:
-        {"tour": tour, "hosted": hosted, "rosapi": rosapi, "workshop": workshop}[scenario](ros)
+        {"tour": tour, "hosted": hosted, "rosapi": rosapi, "stuck": stuck, "workshop": workshop}[scenario](ros)
     finally:
         ros.terminate()
 

@@ -6,8 +6,10 @@ import asyncio
 
 import pytest
 
+from services.runtime import NodeSettings
 from tests.conftest import wait_until
 from tests.services.core.protocols.conftest import Bridge, Tuned
+from tests.services.core.protocols.test_rosbridge import Stuck
 
 pytestmark = pytest.mark.timeout(90)
 
@@ -95,3 +97,20 @@ async def test_every_rosapi_service_answers_with_and_without_the_leading_slash(b
     assert "/tuned:retries" in helpers["params"] and helpers["param"] == 5
     assert helpers["request_details"]["typedefs"][0]["fieldnames"] == ["data"]
     await client.finish()
+
+
+async def test_roslibpy_calling_a_service_that_never_answers_gets_an_error_at_the_default_timeout(
+    impatient_bridge: Bridge,
+) -> None:
+    bridge = impatient_bridge  # the core's default call timeout (SKYDECK_GATEWAY_TIMEOUT_S) is 1 s here
+    stuck = Stuck(NodeSettings(core_url=bridge.core_url, port=0))
+    await stuck.start()
+    try:
+        await wait_until(lambda: bridge.core.registry.service("/stuck/wait") is not None, what="the service")
+        client = await bridge.client("roslibpy_client.py", bridge.rosbridge_url, "stuck")
+        line = await client.expect("stuck")
+        assert line["kind"] == "ServiceException" and "did not answer within 1 s" in line["stuck"]
+        assert (await client.expect("after"))["after"] == "geometry_msgs/msg/PoseStamped"
+        await client.finish()
+    finally:
+        await stuck.stop()
