@@ -103,6 +103,16 @@ async def test_fragments_both_ways(bridge: Bridge) -> None:
             await send(ws, op="fragment", id="x", data=text[num * third : (num + 1) * third], num=num, total=3)
         answer = await receive(ws, "service_response", id="f")
         assert answer["values"] == {"type": "builtin_interfaces/msg/Time"} and answer["result"] is True
+        # A call's own fragment_size: its service_response comes in fragments.
+        await send(ws, op="call_service", service="/rosapi/message_details", id="big", fragment_size=100,
+                   args={"type": "geometry_msgs/msg/PoseStamped"})  # fmt: skip
+        pieces = [await receive(ws, "fragment", id="/rosapi/message_details:1")]
+        while len(pieces) < pieces[0]["total"]:
+            pieces.append(await receive(ws, "fragment", id=pieces[0]["id"]))
+        assert len(pieces) > 1 and all(len(p["data"]) <= 100 for p in pieces)
+        response = json.loads("".join(p["data"] for p in sorted(pieces, key=lambda p: p["num"])))
+        assert response["op"] == "service_response" and response["id"] == "big"
+        assert response["values"]["typedefs"][0]["type"] == "geometry_msgs/msg/PoseStamped"
 
 
 async def test_call_service_args_as_object_list_or_none(bridge: Bridge) -> None:
