@@ -176,6 +176,8 @@ async def test_the_write_token_guards_publishing_and_calls(locked_bridge: Bridge
         assert "need the token" in (await receive(ws, "status"))["message"]
         await ws.send(struct.pack("<BIII", 2, services["/control/take_off"], 1, 4) + b"json{}")
         assert "need the token" in (await receive(ws, "serviceCallFailure"))["message"]
+        await send(ws, op="setParameters", parameters=[{"name": "/drone.speed", "value": 1.0}], id="p")
+        assert "need the token" in (await receive(ws, "status"))["message"]
     async with connect(bridge.foxglove_url + "/?token=secret", subprotocols=V1) as ws:
         await send(ws, op="advertise", channels=[{"id": 1, "topic": "/drone/cmd_vel", "encoding": "json", "schemaName": "geometry_msgs/msg/Twist"}])
         await ws.send(struct.pack("<BI", 1, 1) + b'{"angular": {"z": 0.5}}')
