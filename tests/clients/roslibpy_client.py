@@ -87,6 +87,55 @@ def hosted(ros: roslibpy.Ros) -> None:
     emit(calls=len(calls))
 
 
+ROSAPI_CALLS = [  # the services the issue lists, each with a request that has an answer to check
+    ("topics", {}),
+    ("topics_for_type", {"type": "geometry_msgs/msg/PoseStamped"}),
+    ("services", {}),
+    ("service_type", {"service": "/control/take_off"}),
+    ("topic_type", {"topic": "/drone/pose"}),
+    ("nodes", {}),
+    ("node_details", {"node": "/drone"}),
+    ("message_details", {"type": "geometry_msgs/msg/PoseStamped"}),
+    ("service_request_details", {"type": "std_srvs/srv/SetBool"}),
+    ("service_response_details", {"type": "std_srvs/srv/SetBool"}),
+    ("get_param", {"name": "/tuned:max_speed"}),
+    ("set_param", {"name": "/tuned:retries", "value": "5"}),
+    ("get_param_names", {}),
+    ("get_time", {}),
+]
+
+
+def rosapi(ros: roslibpy.Ros) -> None:
+    """Every rosapi service, called as /rosapi/NAME and as rosapi/NAME; then roslibpy's own helpers."""
+    for name, args in ROSAPI_CALLS:
+        answers = []
+        for spelling in (f"/rosapi/{name}", f"rosapi/{name}"):
+            service = roslibpy.Service(ros, spelling, "rosapi/" + name.title().replace("_", ""))
+            answers.append(dict(service.call(roslibpy.ServiceRequest(args), timeout=10)))
+        emit(rosapi=name, slash=answers[0], relative=answers[1])
+    emit(helpers={
+        "topics_for_type": ros.get_topics_for_type("geometry_msgs/msg/PoseStamped"),
+        "service_type": ros.get_service_type("/control/take_off"),
+        "node_details": ros.get_node_details("/drone"),
+        "params": ros.get_params(),
+        "param": ros.get_param("/tuned:retries"),
+        "request_details": dict(ros.get_service_request_details("std_srvs/srv/SetBool")),
+        "response_details": dict(ros.get_service_response_details("std_srvs/srv/SetBool")),
+    })
+
+
+def stuck(ros: roslibpy.Ros) -> None:
+    """Call /stuck/wait, which never answers, with no timeout in the request: the core's default
+    ends it with an error response, which roslibpy raises as ServiceException."""
+    service = roslibpy.Service(ros, "/stuck/wait", "std_srvs/srv/Trigger")
+    try:
+        service.call(roslibpy.ServiceRequest(), timeout=30)  # roslibpy's own wait, not sent
+        emit(stuck="answered?!")
+    except Exception as error:
+        emit(stuck=str(error), kind=type(error).__name__)
+    emit(after=ros.get_topic_type("/drone/pose"))  # the connection carries on
+
+
 def workshop(ros: roslibpy.Ros) -> None:
     """The real workshop system: read the pose, take off, watch the drone climb."""
     emit(pose=first_message(ros, "/drone/pose", "geometry_msgs/msg/PoseStamped"))
@@ -114,7 +163,7 @@ def main() -> None:
     ros.run(timeout=15)
     emit(connected=ros.is_connected)
     try:
-        {"tour": tour, "hosted": hosted, "workshop": workshop}[scenario](ros)
+        {"tour": tour, "hosted": hosted, "rosapi": rosapi, "stuck": stuck, "workshop": workshop}[scenario](ros)
     finally:
         ros.terminate()
 

@@ -13,7 +13,8 @@ get, set and follow parameters (:mod:`.parameters`, named ``/node.param``), and 
 connection graph. While a simulator publishes ``/clock``, the server offers ``time``: ``0x02``
 time frames from ``/clock``, and message timestamps on the same clock.
 
-A bad request is answered with a ``status`` (level 2, error) for that request only.
+A bad request is answered with a ``status`` (level 2, error) for that request only. A client
+that stops reading is closed with 4001 (see :mod:`.session`).
 """
 
 from __future__ import annotations
@@ -92,13 +93,16 @@ class FoxgloveEndpoint:
             )
             return
         await websocket.accept(subprotocol=chosen)
-        connection = _Connection(self, self.access.session(websocket, "foxglove"))
+        session = self.access.session(websocket, "foxglove")
+        connection = _Connection(self, session)
         self._connections.add(connection)
         try:
-            await connection.run(websocket)
+            stalled = await session.serve(connection.run(websocket), advice="subscribe to fewer channels")
         finally:
             self._connections.discard(connection)
             connection.close()
+        if stalled is not None:
+            await close_with(websocket, stalled.code, stalled.reason)
 
     def close(self) -> None:
         self._unwatch()

@@ -7,12 +7,14 @@ Each JSON text frame is one op (:mod:`.rosbridge_ops` reads them). Topics are re
 through the connection's :class:`~services.core.protocols.session.ClientSession` (an outbox per
 topic, the edge's validation, token and "no echo"); ``call_service`` takes the HTTP gateway's
 call path, and always ends with a ``service_response`` (``result: false`` and the reason in
-``values`` when no answer came within its ``timeout``, or the gateway's). A service a client
-advertises is hosted by the core for it, so nodes and ``curl`` call it like any other.
+``values`` when no answer came within its ``timeout``, or the gateway's; a ``status`` error
+too). A service a client advertises is hosted by the core for it, so nodes and ``curl`` call
+it like any other.
 
 A bad frame gets a ``status`` (level ``error``, the op's ``id``) and nothing else happens;
 ``set_level`` asks for ``warning`` and ``info`` statuses too, or ``none``. Statuses are replies
-to a client's own ops, never sent otherwise. ``auth`` with the token as ``mac`` unlocks writing
+to a client's own ops, never sent otherwise. A client that stops reading is closed with 4001
+(see :mod:`.session`). ``auth`` with the token as ``mac`` unlocks writing
 on a connection opened without it.
 """
 
@@ -55,7 +57,7 @@ from services.core.protocols.rosbridge_ops import (
 )
 from services.core.protocols.session import ClientSession, incoming
 from services.runtime.auth import token_is_valid
-from services.runtime.edge.frames import FrameRejected
+from services.runtime.edge.frames import FrameRejected, close_with
 from services.runtime.edge.pump import Encode
 from services.runtime.errors import ServiceUnavailableError
 from services.runtime.service import ServiceHandlerError
@@ -81,11 +83,14 @@ class RosbridgeEndpoint:
     async def serve(self, websocket: WebSocket) -> None:
         """One rosbridge connection, from handshake to close."""
         await websocket.accept()
-        connection = _Connection(self, self.access.session(websocket, "rosbridge"))
+        session = self.access.session(websocket, "rosbridge")
+        connection = _Connection(self, session)
         try:
-            await connection.run(websocket)
+            stalled = await session.serve(connection.run(websocket), advice="subscribe with a throttle_rate")
         finally:
             connection.close()
+        if stalled is not None:
+            await close_with(websocket, stalled.code, stalled.reason)
 
 
 @dataclass
@@ -236,10 +241,13 @@ class _Connection:
         encode: Encode = self._endpoint.envelopes.encoder(topic)
         if merged[2] is not None:
             encode = fragments(encode, merged[2], topic)
+        # As rosbridge_server: throttled without a queue_length, the newest message each period;
+        # with one, every message that queue holds, one per period, oldest first.
         self._session.start_reading(
             topic,
             queue=queue or DEFAULT_QUEUE,
             rate_hz=1000.0 / throttle if throttle > 0 else None,
+            paced_queue=throttle > 0 and queue > 1,
             encode=encode,
         )
 
@@ -264,6 +272,8 @@ class _Connection:
                 values, result = reply.detail(), False
         except (Refused, SkydeckError, ValueError) as error:
             values, result, name = str(error), False, op.service
+        if not result:  # as rosbridge_server: the failure is also a status error (to the call's id)
+            await self._status("error", f"call_service {name}: {values}", op.id)
         response: dict[str, Any] = {"op": "service_response", "service": name, "values": values, "result": result}
         if op.id is not None:
             response["id"] = op.id

@@ -7,7 +7,13 @@ An adapter (rosbridge, Foxglove) translates its frames into these calls and noth
   writer (``write_outbox``) in the protocol's form (``encode``);
 - ``publish(topic, text)``: the same validation, token and "no echo" as a native socket;
 - ``call(service, body)``: the one service-call path of the HTTP gateway;
-- ``guest``: the connection as the graph shows it (``/rosbridge_client_3``).
+- ``guest``: the connection as the graph shows it (``/rosbridge_client_3``);
+- ``serve(frames)``: the adapter's frame loop, beside the stall watch a native reader has.
+
+Each topic a connection reads has its own bounded outbox and writer, so a client that falls
+behind loses its own oldest frames; one that stops reading altogether (a send has waited for
+its socket for ``SKYDECK_STALL_TIMEOUT_S``) is detached and closed with 4001, like a stalled
+native reader (docs/streams.md). The publishers and every other client go on meanwhile.
 
 A connection reads each topic once, however many subscriptions its client makes to it (the
 adapter merges them), so what it publishes on a topic is never sent back to it.
@@ -17,9 +23,10 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-from collections.abc import AsyncIterator
+import time
+from collections.abc import AsyncIterator, Coroutine
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
@@ -29,7 +36,7 @@ from services.core.service_calls import ServiceReply
 from services.runtime.auth import NOT_AUTHORISED, presented_token, token_is_valid
 from services.runtime.edge.frames import FrameRejected
 from services.runtime.edge.outbox import Outbox
-from services.runtime.edge.pump import Encode, write_outbox
+from services.runtime.edge.pump import Encode, watch_stall, write_outbox
 from services.runtime.wire import Close
 from shared_models import Message
 
@@ -77,6 +84,37 @@ class ClientSession:
         self._send = websocket.send
         self.readings: dict[str, Reading] = {}
         self._publications: dict[str, GatewayTopic] = {}
+        self._replies_waiting: list[float] = []  # since when each reply being sent has waited
+
+    async def serve(self, frames: Coroutine[Any, Any, None], *, advice: str) -> FrameRejected | None:
+        """Run the adapter's frame loop ``frames`` until the client leaves; or, if the client
+        stops reading, end it and return the reason to close with (4001): the caller detaches
+        the connection (``close``), then closes the socket with it, as for a native reader.
+        ``advice`` ends that reason: what the client can do instead."""
+        loop = asyncio.get_running_loop()
+        reading = loop.create_task(frames)
+        watching = loop.create_task(
+            watch_stall(self._waiting_since, self._dropped, self.access.settings.reader_stall_s, advice)
+        )
+        try:
+            done, _ = await asyncio.wait((reading, watching), return_when=asyncio.FIRST_COMPLETED)
+        finally:
+            reading.cancel()
+            watching.cancel()
+        if reading in done:
+            reading.result()  # an adapter's own error is raised, not hidden
+            return None
+        stalled = watching.exception()
+        if isinstance(stalled, FrameRejected):
+            return stalled
+        raise stalled or RuntimeError("the stall watch ended")
+
+    def _waiting_since(self) -> float | None:
+        waiting = [r.outbox.busy_since for r in self.readings.values() if r.outbox.busy_since is not None]
+        return min(waiting + self._replies_waiting, default=None)
+
+    def _dropped(self) -> int:
+        return sum(reading.outbox.dropped for reading in self.readings.values())
 
     @property
     def may_write(self) -> bool:
@@ -91,20 +129,27 @@ class ClientSession:
     # -- reading --------------------------------------------------------------------------------
 
     def start_reading(
-        self, topic: str, *, queue: int, rate_hz: float | None = None, encode: Encode | None = None
+        self,
+        topic: str,
+        *,
+        queue: int,
+        rate_hz: float | None = None,
+        paced_queue: bool = False,
+        encode: Encode | None = None,
     ) -> Reading:
         """Send ``topic``'s frames to this socket (replacing an earlier reading of it).
 
-        ``queue`` frames may wait before the oldest is dropped; with ``rate_hz``, only the
-        newest frame is sent, at most that often. A latched topic's latest frame goes first.
+        ``queue`` frames may wait before the oldest is dropped; with ``rate_hz``, one frame is
+        sent at most that often: the newest (the queue holds one), or with ``paced_queue`` the
+        oldest of ``queue``. A latched topic's latest frame goes first.
         """
         self.stop_reading(topic)
         view = GatewayTopic(self.access.core, self.access.registry, topic, None)
-        outbox = Outbox(1 if rate_hz else max(1, queue))
+        outbox = Outbox(1 if rate_hz and not paced_queue else max(1, queue))
         reading = Reading(view, outbox)
         latched = view.start_reading(outbox)
         reading.task = asyncio.get_running_loop().create_task(
-            write_outbox(self._send, outbox, rate_hz=rate_hz, initial_frame=latched, encode=encode)
+            write_outbox(self._send, outbox, rate_hz=rate_hz, paced_queue=paced_queue, initial_frame=latched, encode=encode)
         )
         self.readings[topic] = reading
         self.guest.reads(topic)
@@ -178,9 +223,16 @@ class ClientSession:
 
     async def send_text(self, text: str) -> None:
         """Send one protocol message of this connection's own (a reply, a status)."""
-        with contextlib.suppress(RuntimeError, OSError):
-            await self._send({"type": "websocket.send", "text": text})
+        await self._reply({"type": "websocket.send", "text": text})
 
     async def send_bytes(self, data: bytes) -> None:
-        with contextlib.suppress(RuntimeError, OSError):
-            await self._send({"type": "websocket.send", "bytes": data})
+        await self._reply({"type": "websocket.send", "bytes": data})
+
+    async def _reply(self, message: dict[str, Any]) -> None:
+        started = time.monotonic()
+        self._replies_waiting.append(started)  # the stall watch sees a reply that cannot go out
+        try:
+            with contextlib.suppress(RuntimeError, OSError):
+                await self._send(message)
+        finally:
+            self._replies_waiting.remove(started)

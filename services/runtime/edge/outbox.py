@@ -82,3 +82,13 @@ class Outbox:
         self._frames.clear()
         self._bytes = 0
         return frame
+
+    async def oldest(self) -> Frame:
+        """Wait until a frame is queued, then take the oldest (for paced readers that keep every
+        frame their queue holds: rosbridge's ``throttle_rate`` with a ``queue_length``)."""
+        await self._ready.wait()
+        frame = self._frames.popleft()
+        self._bytes -= len(frame)
+        if not self._frames:
+            self._ready.clear()
+        return frame

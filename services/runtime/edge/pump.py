@@ -24,7 +24,7 @@ from services.runtime.edge.options import StreamOptions
 from services.runtime.edge.outbox import Frame, Outbox
 from services.runtime.wire import STALL_CHECK_PERIOD_S, Close
 
-__all__ = ["Encode", "serve_stream", "write_outbox"]
+__all__ = ["Encode", "serve_stream", "watch_stall", "write_outbox"]
 
 
 async def serve_stream(
@@ -87,6 +87,7 @@ async def write_outbox(
     outbox: Outbox,
     *,
     rate_hz: float | None = None,
+    paced_queue: bool = False,
     initial_frame: Frame | None = None,
     encode: Encode | None = None,
 ) -> None:
@@ -94,7 +95,8 @@ async def write_outbox(
 
     Frames go as they are (text or binary) unless ``encode`` turns each into a protocol's
     messages (rosbridge's envelope, Foxglove's binary frame); a throttled reader (``rate_hz``)
-    gets the newest frame each period. Protocol adapters run one of these per subscription on
+    gets the newest frame each period, or with ``paced_queue`` the oldest frame its outbox holds
+    (rosbridge's ``throttle_rate`` with a ``queue_length``). Protocol adapters run one of these per subscription on
     one socket: each write completes on its own, so frames of different subscriptions never
     interleave. ``outbox.busy_since`` is set while a send waits for the socket (the stall watch).
     """
@@ -115,8 +117,9 @@ async def write_outbox(
                         await _timed(send, outbox, frame, forms)
             else:
                 period_s = 1.0 / rate_hz
+                take = outbox.oldest if paced_queue else outbox.latest
                 while True:
-                    await _timed(send, outbox, await outbox.latest(), forms)
+                    await _timed(send, outbox, await take(), forms)
                     await asyncio.sleep(period_s)
     finally:
         outbox.send_now = None
@@ -132,15 +135,25 @@ async def _timed(send: _Send, outbox: Outbox, frame: Frame, forms: _Forms) -> No
 
 
 async def _watch_stall(outbox: Outbox, stall_timeout_s: float) -> None:
-    """End the stream with 4001 once a send has waited for the socket for ``stall_timeout_s``."""
+    await watch_stall(lambda: outbox.busy_since, lambda: outbox.dropped, stall_timeout_s, "ask for less (?rate=HZ)")
+
+
+async def watch_stall(
+    waiting_since: Callable[[], float | None], dropped: Callable[[], int], stall_timeout_s: float, advice: str
+) -> None:
+    """Raise FrameRejected(4001) once the oldest send still waiting for the socket
+    (``waiting_since()``, monotonic seconds; None: none waits) has waited ``stall_timeout_s``.
+
+    Runs beside a connection's writers; the caller detaches the connection, then closes it.
+    """
     while True:
         await asyncio.sleep(STALL_CHECK_PERIOD_S)
-        busy_since = outbox.busy_since
-        if busy_since is not None and time.monotonic() - busy_since > stall_timeout_s:
+        since = waiting_since()
+        if since is not None and time.monotonic() - since > stall_timeout_s:
             raise FrameRejected(
                 Close.STALLED,
-                f"reader stalled: read nothing for {stall_timeout_s:g} s ({outbox.dropped} frames dropped); "
-                "reconnect, or ask for less (?rate=HZ)",
+                f"reader stalled: read nothing for {stall_timeout_s:g} s ({dropped()} frames dropped); "
+                f"reconnect, or {advice}",
             )
 
 

@@ -63,6 +63,8 @@ def test_frames_make_each_encoding_once_from_whatever_they_have() -> None:
     assert from_binary.json == image.model_dump_json()  # standard base64, as the model writes it
     untyped = Frames.received(made.packed, None)  # a type this process does not know
     assert json.loads(untyped.json) == json.loads(image.model_dump_json())
+    nested = Frames.received(ormsgpack.packb({"images": [{"data": b"\x00\xff"}], "n": 1}), None)
+    assert json.loads(nested.json) == {"images": [{"data": "AP8="}], "n": 1}  # byte arrays at any depth
 
 
 @pytest.mark.parametrize("via_core", [False, True])

@@ -126,9 +126,9 @@ class ClientRun:
         return error.decode(errors="replace")
 
 
-async def _start_bridge(token: str = "") -> AsyncIterator[Bridge]:
+async def _start_bridge(token: str = "", **settings: object) -> AsyncIterator[Bridge]:
     rosbridge_port, foxglove_port = free_port(), free_port()
-    core = CoreProcess(rosbridge_port=rosbridge_port, foxglove_port=foxglove_port, token=token)
+    core = CoreProcess(rosbridge_port=rosbridge_port, foxglove_port=foxglove_port, token=token, **settings)
     await core.start()
     drone = Drone(NodeSettings(core_url=core.url, port=0, token=token, ping_interval_s=1.0, ping_timeout_s=2.0))
     await drone.start()
@@ -158,6 +158,14 @@ async def locked_bridge() -> AsyncIterator[Bridge]:
         yield running
 
 
+@pytest.fixture
+async def impatient_bridge() -> AsyncIterator[Bridge]:
+    """The same, with a core that gives up soon: a call with no timeout of its own after 1 s (the
+    gateway's default), a client that reads nothing for 1 s is stalled (the keepalive waits 60 s)."""
+    async for running in _start_bridge(gateway_timeout_s=1.0, stall_timeout_s=1.0, ping_timeout_s=60.0):
+        yield running
+
+
 Connect = Callable[..., Awaitable[Any]]
 
 
@@ -174,3 +182,13 @@ class Tuned(Node):
     @property
     def values(self) -> dict[str, Any]:
         return {name: self.get_parameter(name).value for name in ("max_speed", "mode", "retries")}
+
+
+@pytest.fixture
+async def tuned(bridge: Bridge) -> AsyncIterator[Tuned]:
+    """A Tuned node on the bridge's core."""
+    node = Tuned(NodeSettings(core_url=bridge.core_url, port=0))
+    await node.start()
+    await wait_until(lambda: bridge.core.registry.service("/tuned/set_parameters") is not None, what="the node")
+    yield node
+    await node.stop()

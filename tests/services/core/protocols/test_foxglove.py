@@ -8,13 +8,17 @@ import json
 import struct
 from typing import Any
 
+import httpx
 import pytest
 from websockets.asyncio.client import ClientConnection, connect
 from websockets.exceptions import ConnectionClosed
 from websockets.typing import Subprotocol
 
+from services.runtime import NodeSettings
 from tests.conftest import wait_until
+from tests.services.cli.test_cli import skydeck
 from tests.services.core.protocols.conftest import Bridge
+from tests.services.core.protocols.test_rosbridge import Stuck
 
 pytestmark = pytest.mark.timeout(60)
 
@@ -118,13 +122,15 @@ async def test_the_advertised_channels_follow_the_graph(bridge: Bridge) -> None:
     ],
 )
 async def test_bad_json_messages_get_a_status_and_the_connection_carries_on(bridge: Bridge, message: str, fragment: str) -> None:
-    async with connect(bridge.foxglove_url, subprotocols=V1) as ws:
+    async with connect(bridge.foxglove_url, subprotocols=V1) as ws, connect(bridge.foxglove_url, subprotocols=V1) as bystander:
         ids = await channels(ws)
+        await send(bystander, op="subscribe", subscriptions=[{"id": 9, "channelId": (await channels(bystander))["/drone/pose"]}])
         await ws.send(message)
         status = await receive(ws, "status")
         assert status["level"] == 2 and fragment in status["message"], status
         await send(ws, op="subscribe", subscriptions=[{"id": 5, "channelId": ids["/drone/pose"]}])
-        assert struct.unpack_from("<I", await binary(ws, 0x01), 1)[0] == 5
+        assert struct.unpack_from("<I", await binary(ws, 0x01), 1)[0] == 5  # still working
+        assert struct.unpack_from("<I", await binary(bystander, 0x01), 1)[0] == 9  # and so is everyone else
 
 
 async def test_bad_binary_messages_get_a_status(bridge: Bridge) -> None:
@@ -170,6 +176,8 @@ async def test_the_write_token_guards_publishing_and_calls(locked_bridge: Bridge
         assert "need the token" in (await receive(ws, "status"))["message"]
         await ws.send(struct.pack("<BIII", 2, services["/control/take_off"], 1, 4) + b"json{}")
         assert "need the token" in (await receive(ws, "serviceCallFailure"))["message"]
+        await send(ws, op="setParameters", parameters=[{"name": "/drone.speed", "value": 1.0}], id="p")
+        assert "need the token" in (await receive(ws, "status"))["message"]
     async with connect(bridge.foxglove_url + "/?token=secret", subprotocols=V1) as ws:
         await send(ws, op="advertise", channels=[{"id": 1, "topic": "/drone/cmd_vel", "encoding": "json", "schemaName": "geometry_msgs/msg/Twist"}])
         await ws.send(struct.pack("<BI", 1, 1) + b'{"angular": {"z": 0.5}}')
@@ -193,3 +201,46 @@ async def test_connection_graph_updates_follow_changes(bridge: Bridge) -> None:
             assert provided["/demo/flash"][0].startswith("/rosbridge_client_")
         while "/demo/flash" not in (await receive(ws, "connectionGraphUpdate"))["removedServices"]:
             pass
+
+
+async def test_a_foxglove_client_is_a_node_in_the_graph_and_node_list(bridge: Bridge) -> None:
+    async with connect(bridge.foxglove_url, subprotocols=V1) as ws:
+        ids = await channels(ws)
+        await send(ws, op="subscribe", subscriptions=[{"id": 1, "channelId": ids["/drone/pose"]}])
+        await send(ws, op="advertise", channels=[{"id": 2, "topic": "/drone/cmd_vel", "encoding": "json", "schemaName": "geometry_msgs/msg/Twist"}])
+        await binary(ws, 0x01)
+        await wait_until(lambda: any(n.startswith("/foxglove_client_") for n in _publishers(bridge, "/drone/cmd_vel")), what="the publication")
+        async with httpx.AsyncClient() as http:
+            graph = (await http.get(bridge.core_url + "/api/graph")).json()
+        client = next(n for n in graph["nodes"] if n["name"].startswith("/foxglove_client_"))
+        assert client["client"].startswith("foxglove client 127.0.0.1:")
+        assert set(client["subscriptions"]) == {"/drone/pose", "/clock"}  # /clock: the server's time
+        assert client["publications"] == ["/drone/cmd_vel"]
+        code, out, _ = await skydeck(bridge.core_url, "node", "list")
+        assert code == 0 and client["name"] in out.split()
+        code, out, _ = await skydeck(bridge.core_url, "node", "info", client["name"])
+        assert code == 0 and "Client: foxglove client 127.0.0.1:" in out and "/drone/cmd_vel" in out
+    await wait_until(lambda: not any(n.startswith("/foxglove_client_") for n in bridge.core.registry.nodes), what="the client to leave")
+
+
+def _publishers(bridge: Bridge, topic: str) -> list[str]:
+    return [publisher.node for publisher in bridge.core.registry.publishers(topic)]
+
+
+async def test_a_call_that_is_never_answered_fails_at_the_default_timeout(impatient_bridge: Bridge) -> None:
+    bridge = impatient_bridge  # the core's default call timeout is 1 s here
+    stuck = Stuck(NodeSettings(core_url=bridge.core_url, port=0))
+    await stuck.start()
+    try:
+        await wait_until(lambda: bridge.core.registry.service("/stuck/wait") is not None, what="the service")
+        async with connect(bridge.foxglove_url, subprotocols=V1) as ws:
+            services: dict[str, int] = {}
+            while "/stuck/wait" not in services:
+                services |= {s["name"]: s["id"] for s in (await receive(ws, "advertiseServices"))["services"]}
+            await ws.send(struct.pack("<BIII", 2, services["/stuck/wait"], 5, 4) + b"json{}")
+            failure = await receive(ws, "serviceCallFailure")
+            assert failure["callId"] == 5 and "did not answer within 1 s" in failure["message"]
+            await ws.send(struct.pack("<BIII", 2, services["/control/take_off"], 6, 4) + b"json{}")
+            assert struct.unpack_from("<III", await binary(ws, 0x03), 1)[1] == 6  # the connection carries on
+    finally:
+        await stuck.stop()

@@ -5,7 +5,6 @@ rcl_interfaces services (list/get/set_parameters) and /parameter_events."""
 from __future__ import annotations
 
 import json
-from collections.abc import AsyncIterator
 
 import pytest
 from websockets.asyncio.client import connect
@@ -17,22 +16,12 @@ from services.core.protocols.parameters import (
     split_name,
     to_value,
 )
-from services.runtime import NodeSettings
 from shared_models.rcl_interfaces import ParameterType
-from tests.conftest import wait_until
 from tests.services.core.protocols.conftest import Bridge, Tuned
+from tests.services.core.protocols.test_foxglove import receive
 from tests.services.core.protocols.test_rosbridge import call
 
 pytestmark = pytest.mark.timeout(60)
-
-
-@pytest.fixture
-async def tuned(bridge: Bridge) -> AsyncIterator[Tuned]:
-    node = Tuned(NodeSettings(core_url=bridge.core_url, port=0))
-    await node.start()
-    await wait_until(lambda: bridge.core.registry.service("/tuned/set_parameters") is not None, what="the node")
-    yield node
-    await node.stop()
 
 
 async def test_rosapi_reads_and_writes_parameters(bridge: Bridge, tuned: Tuned) -> None:
@@ -69,13 +58,9 @@ async def test_foxglove_gets_sets_and_follows_parameters(bridge: Bridge, tuned: 
 async def test_foxglove_set_refused_gets_a_status(bridge: Bridge, tuned: Tuned) -> None:
     async with connect(bridge.foxglove_url, subprotocols=["foxglove.websocket.v1"]) as ws:  # type: ignore[list-item]
         await ws.send(json.dumps({"op": "setParameters", "parameters": [{"name": "/tuned.mode", "value": 1}], "id": "x"}))
-        while True:
-            message = json.loads(await ws.recv())
-            if message["op"] == "status":
-                break
+        message = await receive(ws, "status")  # binary time frames (the drone's /clock) are skipped
         assert message["level"] == 2 and "/tuned.mode was not set: parameter 'mode' is of type string; got integer 1" in message["message"]
-        while message["op"] != "parameterValues":
-            message = json.loads(await ws.recv())
+        message = await receive(ws, "parameterValues")
         assert message == {"op": "parameterValues", "parameters": [{"name": "/tuned.mode", "value": "auto"}], "id": "x"}
 
 

@@ -4,6 +4,7 @@ token, and the client in the graph. (The real clients are in test_rosbridge_rosl
 from __future__ import annotations
 
 import asyncio
+import itertools
 import json
 from typing import Any
 
@@ -11,7 +12,7 @@ import httpx
 import pytest
 from websockets.asyncio.client import ClientConnection, connect
 
-from services.runtime import Node
+from services.runtime import Node, NodeSettings
 from shared_models.std_srvs import Trigger
 from tests.conftest import wait_until
 from tests.services.cli.test_cli import skydeck
@@ -56,15 +57,21 @@ def _core_reads(bridge: Bridge, topic: str) -> bool:
 
 
 async def test_throttle_rate_and_queue_length(bridge: Bridge) -> None:
-    async with connect(bridge.rosbridge_url) as ws:
-        await send(ws, op="subscribe", topic="/drone/pose", throttle_rate=500, queue_length=1)
-        first = await receive(ws, "publish")
-        second = await receive(ws, "publish")
-        # The drone publishes every 50 ms (one stamp step); throttled to 500 ms, messages skip.
-        step_ns = 50_000_000
-        stamps = [m["msg"]["header"]["stamp"] for m in (first, second)]
-        gap = (stamps[1]["sec"] - stamps[0]["sec"]) * 10**9 + stamps[1]["nanosec"] - stamps[0]["nanosec"]
-        assert gap > 2 * step_ns
+    # The drone publishes every 50 ms, each stamp one step (50 ms of its clock) after the last.
+    step_ns = 50_000_000
+
+    async def steps(ws: ClientConnection, count: int) -> list[int]:
+        stamps = [(await receive(ws, "publish"))["msg"]["header"]["stamp"] for _ in range(count)]
+        ns = [stamp["sec"] * 10**9 + stamp["nanosec"] for stamp in stamps]
+        return [(b - a) // step_ns for a, b in itertools.pairwise(ns)]
+
+    async with connect(bridge.rosbridge_url) as newest, connect(bridge.rosbridge_url) as queued:
+        # Throttled with no queue (or a queue of 1): the newest message each period, others skipped.
+        await send(newest, op="subscribe", topic="/drone/pose", throttle_rate=500, queue_length=1)
+        # Throttled with a queue: every message, one per period, until the queue of 10 overflows.
+        await send(queued, op="subscribe", topic="/drone/pose", throttle_rate=200, queue_length=10)
+        assert all(step > 2 for step in await steps(newest, 2))
+        assert await steps(queued, 4) == [1, 1, 1]
 
 
 async def test_a_late_subscriber_gets_the_latched_message(bridge: Bridge) -> None:
@@ -96,6 +103,16 @@ async def test_fragments_both_ways(bridge: Bridge) -> None:
             await send(ws, op="fragment", id="x", data=text[num * third : (num + 1) * third], num=num, total=3)
         answer = await receive(ws, "service_response", id="f")
         assert answer["values"] == {"type": "builtin_interfaces/msg/Time"} and answer["result"] is True
+        # A call's own fragment_size: its service_response comes in fragments.
+        await send(ws, op="call_service", service="/rosapi/message_details", id="big", fragment_size=100,
+                   args={"type": "geometry_msgs/msg/PoseStamped"})  # fmt: skip
+        pieces = [await receive(ws, "fragment", id="/rosapi/message_details:1")]
+        while len(pieces) < pieces[0]["total"]:
+            pieces.append(await receive(ws, "fragment", id=pieces[0]["id"]))
+        assert len(pieces) > 1 and all(len(p["data"]) <= 100 for p in pieces)
+        response = json.loads("".join(p["data"] for p in sorted(pieces, key=lambda p: p["num"])))
+        assert response["op"] == "service_response" and response["id"] == "big"
+        assert response["values"]["typedefs"][0]["type"] == "geometry_msgs/msg/PoseStamped"
 
 
 async def test_call_service_args_as_object_list_or_none(bridge: Bridge) -> None:
@@ -118,8 +135,6 @@ class Stuck(Node):
 
 
 async def test_a_call_nobody_answers_ends_with_its_timeout(bridge: Bridge) -> None:
-    from services.runtime import NodeSettings
-
     stuck = Stuck(NodeSettings(core_url=bridge.core_url, port=0))
     await stuck.start()
     try:
@@ -135,6 +150,27 @@ async def test_a_call_nobody_answers_ends_with_its_timeout(bridge: Bridge) -> No
             assert answer["result"] is False and "did not answer within 0.3 s" in answer["values"]
             forwarded = await receive(ws, "call_service")  # the host was asked, and never replied
             assert forwarded["service"] == "/mute/trigger" and forwarded["args"] == {}
+    finally:
+        await stuck.stop()
+
+
+async def test_a_call_with_no_timeout_ends_at_the_default_with_an_error_response(impatient_bridge: Bridge) -> None:
+    bridge = impatient_bridge  # the core's gateway timeout (SKYDECK_GATEWAY_TIMEOUT_S) is 1 s here
+    stuck = Stuck(NodeSettings(core_url=bridge.core_url, port=0))
+    await stuck.start()
+    try:
+        await wait_until(lambda: bridge.core.registry.service("/stuck/wait") is not None, what="the service")
+        async with connect(bridge.rosbridge_url) as ws:
+            answer = await call(ws, "/stuck/wait", "d")
+            assert answer["result"] is False and "did not answer within 1 s" in answer["values"]
+            await send(ws, op="advertise_service", service="/mute/trigger", type="std_srvs/srv/Trigger")
+            await wait_until(lambda: bridge.core.registry.service("/mute/trigger") is not None, what="hosting")
+            async with connect(bridge.rosbridge_url) as caller:
+                answer = await call(caller, "/mute/trigger", "m")
+                assert answer["result"] is False and "did not answer within 1 s" in answer["values"]
+                # Both connections carry on.
+                assert (await call(caller, "/control/take_off", "t"))["result"] is True
+            assert (await call(ws, "rosapi/topic_type", "y", args={"topic": "/clock"}))["result"] is True
     finally:
         await stuck.stop()
 
@@ -177,7 +213,10 @@ async def test_binary_and_oversized_frames_get_a_status_error(bridge: Bridge) ->
         assert "JSON text" in (await receive(ws, "status"))["msg"]
         await send(ws, op="publish", topic="/drone/cmd_vel", msg={"padding": "x" * limit})
         assert "over" in (await receive(ws, "status"))["msg"]
-        answer = await call(ws, "/no/such", "n")
+        await send(ws, op="call_service", service="/no/such", id="n")
+        status = await receive(ws, "status", id="n")  # the protocol's error reply, then the response
+        assert status["level"] == "error" and "no service /no/such" in status["msg"]
+        answer = await receive(ws, "service_response", id="n")
         assert answer["result"] is False and "no service /no/such" in answer["values"]
 
 

@@ -6,8 +6,10 @@ import asyncio
 
 import pytest
 
+from services.runtime import NodeSettings
 from tests.conftest import wait_until
-from tests.services.core.protocols.conftest import Bridge
+from tests.services.core.protocols.conftest import Bridge, Tuned
+from tests.services.core.protocols.test_rosbridge import Stuck
 
 pytestmark = pytest.mark.timeout(90)
 
@@ -55,3 +57,60 @@ async def test_a_service_hosted_by_roslibpy_is_called_with_curl_through_the_core
     assert (await client.expect("calls"))["calls"] == 1
     await client.finish()
     await wait_until(lambda: bridge.core.registry.service("/demo/set_light") is None, what="the service to go")
+
+
+async def test_every_rosapi_service_answers_with_and_without_the_leading_slash(bridge: Bridge, tuned: Tuned) -> None:
+    client = await bridge.client("roslibpy_client.py", bridge.rosbridge_url, "rosapi")
+    assert (await client.line())["connected"] is True
+    answers = {}
+    for _ in range(14):
+        line = await client.expect("rosapi")
+        answers[line["rosapi"]] = line
+    for name, line in answers.items():
+        if name not in ("get_time", "set_param"):  # the time moves on; set twice: same answer
+            assert line["slash"] == line["relative"], name
+    topics = answers["topics"]["slash"]
+    assert topics["types"][topics["topics"].index("/drone/pose")] == "geometry_msgs/msg/PoseStamped"
+    assert answers["topics_for_type"]["slash"]["topics"] == ["/drone/pose"]
+    assert {"/control/take_off", "/rosapi/get_time", "/tuned/get_parameters"} <= set(answers["services"]["slash"]["services"])
+    assert answers["service_type"]["slash"]["type"] == "std_srvs/srv/Trigger"
+    assert answers["topic_type"]["relative"]["type"] == "geometry_msgs/msg/PoseStamped"
+    assert {"/drone", "/tuned", "/rosapi"} <= set(answers["nodes"]["slash"]["nodes"])
+    drone = answers["node_details"]["relative"]
+    assert "/drone/pose" in drone["publishing"] and "/drone/cmd_vel" in drone["subscribing"]
+    assert "/control/take_off" in drone["services"]
+    assert answers["message_details"]["relative"]["typedefs"][0]["type"] == "geometry_msgs/msg/PoseStamped"
+    request = answers["service_request_details"]["relative"]["typedefs"][0]
+    assert (request["fieldnames"], request["fieldtypes"]) == (["data"], ["bool"])
+    response = answers["service_response_details"]["relative"]["typedefs"][0]
+    assert response["fieldnames"] == ["success", "message"]
+    assert answers["get_param"]["slash"] == {"value": "2.5", "successful": True, "reason": ""}
+    assert answers["set_param"]["slash"]["successful"] is answers["set_param"]["relative"]["successful"] is True
+    assert tuned.values["retries"] == 5
+    assert "/tuned:max_speed" in answers["get_param_names"]["relative"]["names"]
+    for spelling in ("slash", "relative"):  # ROS 1's secs/nsecs and ROS 2's sec/nanosec, the same time
+        now = answers["get_time"][spelling]["time"]
+        assert now["secs"] == now["sec"] >= 100 and now["nsecs"] == now["nanosec"]
+    helpers = (await client.expect("helpers"))["helpers"]  # roslibpy's own methods, on the same services
+    assert helpers["topics_for_type"] == ["/drone/pose"] and helpers["service_type"] == "std_srvs/srv/Trigger"
+    assert "/drone/pose" in helpers["node_details"]["publishing"]
+    assert "/tuned:retries" in helpers["params"] and helpers["param"] == 5
+    assert helpers["request_details"]["typedefs"][0]["fieldnames"] == ["data"]
+    await client.finish()
+
+
+async def test_roslibpy_calling_a_service_that_never_answers_gets_an_error_at_the_default_timeout(
+    impatient_bridge: Bridge,
+) -> None:
+    bridge = impatient_bridge  # the core's default call timeout (SKYDECK_GATEWAY_TIMEOUT_S) is 1 s here
+    stuck = Stuck(NodeSettings(core_url=bridge.core_url, port=0))
+    await stuck.start()
+    try:
+        await wait_until(lambda: bridge.core.registry.service("/stuck/wait") is not None, what="the service")
+        client = await bridge.client("roslibpy_client.py", bridge.rosbridge_url, "stuck")
+        line = await client.expect("stuck")
+        assert line["kind"] == "ServiceException" and "did not answer within 1 s" in line["stuck"]
+        assert (await client.expect("after"))["after"] == "geometry_msgs/msg/PoseStamped"
+        await client.finish()
+    finally:
+        await stuck.stop()
