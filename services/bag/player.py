@@ -7,8 +7,8 @@
 Each message is published as recorded, its frame untouched (``publish(frame)``), at its receive
 time relative to the first one played, divided by ``rate``. ``clock`` publishes ``/clock`` from
 the recording, so nodes with ``use_sim_time`` run on the recording's time: the recording's own
-``/clock`` when it has one (the simulator's time, which its headers are stamped in), else its
-receive times, at ``clock_hz``. ``pause()`` / ``resume()`` hold the timeline (the space bar
+``/clock`` when it has one (the simulator's time, which its headers are stamped in), played even
+when ``topics`` leaves it out, else its receive times, at ``clock_hz``. ``pause()`` / ``resume()`` hold the timeline (the space bar
 does it in a terminal); a paused player publishes nothing, ``/clock`` included.
 """
 
@@ -88,6 +88,11 @@ class Player(Node):
             raise BagError(
                 f"{reader.path} has no topic {', '.join(unknown)}; it has: {', '.join(recorded) or 'none'}"
             )
+        # --clock plays the recorded /clock even when --topics leaves it out: it is the time
+        # the recording's headers are stamped in, which use_sim_time nodes must run on.
+        self._clock_added = options.clock and CLOCK_TOPIC in recorded and CLOCK_TOPIC not in chosen
+        if self._clock_added:
+            chosen.append(CLOCK_TOPIC)
         unknown_remaps = [name for name in options.remap if name not in recorded]
         if unknown_remaps:
             raise BagError(f"--remap names {', '.join(unknown_remaps)}, which {reader.path} does not have")
@@ -105,6 +110,8 @@ class Player(Node):
         self.lateness_s: list[float] | None = None  # set to a list to collect each message's lateness
         self._say = say
         self.topics = {name: options.remap.get(name, name) for name in chosen}
+        if self._clock_added:
+            self.topics[CLOCK_TOPIC] = CLOCK_TOPIC
         self._publishers: dict[str, Publisher[Any]] = {}
         for name in chosen:
             msg_type = message_type(recorded[name].type_name)
@@ -191,10 +198,16 @@ class Player(Node):
             self.destroy_node()
 
     async def _wait_for_subscribers(self) -> None:
-        waiting = [name for name, publisher in self._publishers.items() if publisher.get_subscription_count() == 0]
+        """Wait until each chosen topic has a subscriber (the /clock that --clock added need not)."""
+        chosen = {
+            name: publisher
+            for name, publisher in self._publishers.items()
+            if not (self._clock_added and name == CLOCK_TOPIC)
+        }
+        waiting = [self.topics[name] for name, publisher in chosen.items() if publisher.get_subscription_count() == 0]
         if waiting:
-            self._say(f"waiting for a subscriber on {', '.join(self.topics[name] for name in waiting)}")
-        while any(publisher.get_subscription_count() == 0 for publisher in self._publishers.values()):
+            self._say(f"waiting for a subscriber on {', '.join(waiting)}")
+        while any(publisher.get_subscription_count() == 0 for publisher in chosen.values()):
             await asyncio.sleep(0.01)
 
     async def _play_once(self, start_ns: int) -> None:

@@ -13,8 +13,10 @@ import pytest
 
 from services.bag import BagReader
 from services.launch.background import BackgroundProcess
+from shared_models.builtin_interfaces import Time
+from shared_models.geometry_msgs import PointStamped
 from tests.conftest import free_port, wait_until
-from tests.services.bag.test_record_play import Talker, make_bag
+from tests.services.bag.test_record_play import Listener, Talker, frames, make_bag, point_frame
 from tests.services.cli.test_cli import skydeck
 
 
@@ -116,6 +118,23 @@ async def test_play_with_its_flags_through_the_cli(core, tmp_path: Path) -> None
         looping.stop()
     played = int(next(line for line in looping.lines if line.startswith("played")).split()[1])
     assert looping.returncode == 0 and played > 45
+
+
+async def test_play_clock_publishes_the_recorded_clock_that_topics_leaves_out(core, start_node, tmp_path: Path) -> None:
+    """`bag play --clock --topics /points` of a recording with /clock: a use_sim_time node runs
+    on the recorded /clock (100 s to 199 s), not on the receive times (2023) nor its wall clock."""
+    path = make_bag(tmp_path / "run.mcap", count=100, period_ns=10_000_000, with_clock=True)
+    listener = await start_node(lambda s: Listener(s, {"/points": PointStamped, "/clock": Time}, use_sim_time=True))
+    status, out, err = await skydeck(
+        core.url, "bag", "play", str(path), "--clock", "--topics", "/points", "--wait-for-subscribers", timeout_s=60
+    )
+    assert status == 0, err
+    assert "played 200 messages" in out, out  # /points and the recorded /clock
+    await wait_until(lambda: len(frames(listener, "/points")) == 100, what="every /points message")
+    await wait_until(lambda: listener.get_clock().now().nanoseconds == 199 * 10**9, what="the last recorded /clock")
+    assert frames(listener, "/points") == [point_frame(i) for i in range(100)]
+    ticks = [Time.model_validate_json(frame).sec for frame in frames(listener, "/clock")]
+    assert ticks and ticks == list(range(200 - len(ticks), 200))  # in order from when the listener linked
 
 
 @pytest.mark.parametrize(
