@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import asyncio
 import os
+import re
 import signal
 import sys
 from pathlib import Path
@@ -45,6 +46,7 @@ async def test_ctrl_c_finishes_the_file_and_info_prints_it(core, start_node, tmp
     assert "Topic: /points | Type: geometry_msgs/msg/PointStamped | Count: 100 | Rate:" in out
     assert "Topic: /points_text | Type: std_msgs/msg/String | Count: 0" in out
     assert "Command line:      skydeck bag record /points /points_text -o" in out
+    assert re.search(r"^Skydeck:\s+\d", out, re.MULTILINE)  # the version that recorded it
 
 
 def recorded(path: Path, topic: str) -> int:
