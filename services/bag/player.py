@@ -281,11 +281,10 @@ class Player(Node):
 
     def _publish(self, message: BagMessage, due_s: float) -> None:
         """On the loop: the write of one message that is due (held if paused meanwhile)."""
-        self._in_flight.release()
         if self.paused:
-            self._in_flight.acquire()  # released again when the held message is published
-            self._held.append((message, due_s))
+            self._held.append((message, due_s))  # keeps its in-flight slot until published
             return
+        self._in_flight.release()
         self._publishers[message.topic].publish(message.frame)
         if self.lateness_s is not None:
             self.lateness_s.append(time.perf_counter() - due_s - self._paused_s)
