@@ -5,6 +5,7 @@
         print(format_info(bag.summary))
 
 - :mod:`.writer`: ``BagWriter``, frames into an MCAP file as received (serialised once)
+- :mod:`.mcap_file`: ``McapFile``, the records of an MCAP file, written at a recorder's pace
 - :mod:`.reader`: ``BagReader``, the summary and the messages, also of a file cut short
 - :mod:`.recording`: which topics a recorder picks, and writing their frames
 - :mod:`.recorder`: ``Recorder``, the node behind ``skydeck bag record``

@@ -7,8 +7,8 @@
 Each message is published as recorded, its frame untouched (``publish(frame)``), at its receive
 time relative to the first one played, divided by ``rate``. ``clock`` publishes ``/clock`` from
 the recording, so nodes with ``use_sim_time`` run on the recording's time: the recording's own
-``/clock`` when it has one (the simulator's time, which its headers are stamped in), else its
-receive times, at ``clock_hz``. ``pause()`` / ``resume()`` hold the timeline (the space bar
+``/clock`` when it has one (the simulator's time, which its headers are stamped in), played even
+when ``topics`` leaves it out, else its receive times, at ``clock_hz``. ``pause()`` / ``resume()`` hold the timeline (the space bar
 does it in a terminal); a paused player publishes nothing, ``/clock`` included.
 """
 
@@ -17,13 +17,14 @@ from __future__ import annotations
 import asyncio
 import math
 import os
+import threading
 import time
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 from services.bag.errors import BagError
-from services.bag.reader import BagReader
+from services.bag.reader import BagMessage, BagReader
 from services.bag.schemas import MESSAGE_ENCODING, message_type
 from services.runtime.node import Node
 from services.runtime.publisher import Publisher
@@ -33,9 +34,9 @@ from shared_models.builtin_interfaces import Time
 __all__ = ["CLOCK_TOPIC", "PlayOptions", "Player", "check_types"]
 
 CLOCK_TOPIC = "/clock"
-_YIELD_EVERY = 200  # messages published back to back before the loop gets a turn
 _QUEUE_SIZE = 1000
-_FINE_S = 0.0015  # the last stretch of a wait, slept precisely (see Player._wait_until)
+_FINE_S = 0.001  # the last stretch of a wait, slept without being woken (see Player._wait_until)
+_IN_FLIGHT = 256  # messages handed to the loop and not yet published, at most
 
 
 @dataclass(frozen=True)
@@ -88,6 +89,11 @@ class Player(Node):
             raise BagError(
                 f"{reader.path} has no topic {', '.join(unknown)}; it has: {', '.join(recorded) or 'none'}"
             )
+        # --clock plays the recorded /clock even when --topics leaves it out: it is the time
+        # the recording's headers are stamped in, which use_sim_time nodes must run on.
+        self._clock_added = options.clock and CLOCK_TOPIC in recorded and CLOCK_TOPIC not in chosen
+        if self._clock_added:
+            chosen.append(CLOCK_TOPIC)
         unknown_remaps = [name for name in options.remap if name not in recorded]
         if unknown_remaps:
             raise BagError(f"--remap names {', '.join(unknown_remaps)}, which {reader.path} does not have")
@@ -105,6 +111,8 @@ class Player(Node):
         self.lateness_s: list[float] | None = None  # set to a list to collect each message's lateness
         self._say = say
         self.topics = {name: options.remap.get(name, name) for name in chosen}
+        if self._clock_added:
+            self.topics[CLOCK_TOPIC] = CLOCK_TOPIC
         self._publishers: dict[str, Publisher[Any]] = {}
         for name in chosen:
             msg_type = message_type(recorded[name].type_name)
@@ -114,12 +122,16 @@ class Player(Node):
         self._clock_publisher: Publisher[Time] | None = None
         if options.clock and CLOCK_TOPIC not in self.topics.values():
             self._clock_publisher = self.create_publisher(Time, CLOCK_TOPIC, 10)
-        self._unpaused = asyncio.Event()
+        # Shared with the timeline thread: events it waits on, the pause total it reads.
+        self._unpaused = threading.Event()
         self._unpaused.set()
-        self._toggled = asyncio.Event()
+        self._wake = threading.Event()  # a pause, resume or stop: the thread looks again
+        self._ending = threading.Event()
+        self._in_flight = threading.Semaphore(_IN_FLIGHT)
+        self._held: list[tuple[BagMessage, float]] = []  # handed over just as a pause came
         self._paused_s = 0.0
         self._paused_at: float | None = None
-        self._base: tuple[int, float] | None = None  # (log time, monotonic time) of the first played
+        self._base: tuple[int, float] | None = None  # (log time, perf_counter) of the first played
         self._position_ns = summary.start_ns
         self._task: asyncio.Task[None] | None = None
 
@@ -141,20 +153,23 @@ class Player(Node):
     def pause(self) -> None:
         if self.paused:
             return
-        self._paused_at = time.monotonic()
+        self._paused_at = time.perf_counter()
         self._unpaused.clear()
-        self._toggled.set()
+        self._wake.set()
         self._say(f"[PAUSED]  at {self.position_s:.3f} s of {self.reader.summary.duration_s:.3f} s (space resumes)")
 
     def resume(self) -> None:
         if not self.paused:
             return
         if self._paused_at is not None:
-            self._paused_s += time.monotonic() - self._paused_at
+            self._paused_s += time.perf_counter() - self._paused_at
             self._paused_at = None
         self._unpaused.set()
-        self._toggled.set()
+        self._wake.set()
         self._say(f"[RUNNING] from {self.position_s:.3f} s")
+        held, self._held = self._held, []
+        for message, due_s in held:
+            self._publish(message, due_s)
 
     def toggle_pause(self) -> None:
         self.resume() if self.paused else self.pause()
@@ -179,78 +194,116 @@ class Player(Node):
         await super().stop()
 
     async def _play(self) -> None:
-        if self.options.wait_for_subscribers:
-            await self._wait_for_subscribers()
-        start_ns = self.reader.summary.start_ns + int(self.options.start_offset_s * 1e9)
         try:
-            while True:
-                await self._play_once(start_ns)
-                if not self.options.loop:
-                    break
+            if self.options.wait_for_subscribers:
+                await self._wait_for_subscribers()
+            loop = asyncio.get_running_loop()
+            done: asyncio.Future[None] = loop.create_future()
+            timeline = threading.Thread(target=self._timeline, args=(loop, done), name="bag-play-timeline", daemon=True)
+            timeline.start()
+            try:
+                await asyncio.shield(done)
+            finally:
+                self._ending.set()
+                self._wake.set()
+                await asyncio.shield(done)  # the thread reads the file: it ends before the file is closed
         finally:
             self.destroy_node()
 
     async def _wait_for_subscribers(self) -> None:
-        waiting = [name for name, publisher in self._publishers.items() if publisher.get_subscription_count() == 0]
+        """Wait until each chosen topic has a subscriber (the /clock that --clock added need not)."""
+        chosen = {
+            name: publisher
+            for name, publisher in self._publishers.items()
+            if not (self._clock_added and name == CLOCK_TOPIC)
+        }
+        waiting = [self.topics[name] for name, publisher in chosen.items() if publisher.get_subscription_count() == 0]
         if waiting:
-            self._say(f"waiting for a subscriber on {', '.join(self.topics[name] for name in waiting)}")
-        while any(publisher.get_subscription_count() == 0 for publisher in self._publishers.values()):
+            self._say(f"waiting for a subscriber on {', '.join(waiting)}")
+        while any(publisher.get_subscription_count() == 0 for publisher in chosen.values()):
             await asyncio.sleep(0.01)
 
-    async def _play_once(self, start_ns: int) -> None:
+    # -- the timeline, on its own thread ------------------------------------------------------
+    #
+    # The event loop is a poor clock: it wakes up to a millisecond late (epoll's timeout is in
+    # whole ms) and is late again whenever it is busy with a socket. So a thread keeps the
+    # timeline: it reads (and decompresses) each message ahead of its time, sleeps until it is
+    # due with the OS's high-resolution timer, and only then hands it to the loop, whose part
+    # is just the write (``publish(frame)``). The loop is never blocked by the waiting.
+
+    def _timeline(self, loop: asyncio.AbstractEventLoop, done: asyncio.Future[None]) -> None:
+        error: BaseException | None = None
+        try:
+            start_ns = self.reader.summary.start_ns + int(self.options.start_offset_s * 1e9)
+            while not self._ending.is_set():
+                self._timeline_once(loop, start_ns)
+                if not self.options.loop:
+                    break
+        except BaseException as caught:  # handed to the loop, which raises it in _play
+            error = caught
+        loop.call_soon_threadsafe(_settle, done, error)
+
+    def _timeline_once(self, loop: asyncio.AbstractEventLoop, start_ns: int) -> None:
         self._base = None
         scale = 1e-9 / self.options.rate
-        publishers = self._publishers
-        lateness = self.lateness_s
-        back_to_back = 0
-        for message in self.reader.messages(publishers, start_ns=start_ns):
+        publish = self._publish
+        for message in self.reader.messages(self._publishers, start_ns=start_ns):
             if self._base is None:
-                self._base = (message.log_time_ns, time.monotonic())
+                self._base = (message.log_time_ns, time.perf_counter())
             due_s = self._base[1] + (message.log_time_ns - self._base[0]) * scale
-            if due_s + self._paused_s > time.monotonic() or self.paused:
-                await self._wait_until(due_s)
-                back_to_back = 0
-            else:
-                back_to_back += 1
-                if back_to_back >= _YIELD_EVERY:
-                    back_to_back = 0
-                    await asyncio.sleep(0)
-            publishers[message.topic].publish(message.frame)
-            if lateness is not None:
-                lateness.append(time.monotonic() - due_s - self._paused_s)
-            self._position_ns = message.log_time_ns
-            self.played += 1
+            if not self._wait_until(due_s) or not self._in_flight_slot():
+                return
+            loop.call_soon_threadsafe(publish, message, due_s)
 
-    async def _wait_until(self, due_s: float) -> None:
-        """Sleep until ``due_s`` on the playback timeline (which stands still while paused).
-
-        The event loop wakes up to a millisecond late (epoll's timeout is in whole ms), so it
-        is asked to wake ``_FINE_S`` early and the rest is slept precisely, blocking the loop
-        for at most that long: a message is then published within ~0.1 ms of its time.
-        """
-        while True:
+    def _wait_until(self, due_s: float) -> bool:
+        """Sleep until ``due_s`` on the playback timeline (it stands still while paused); False
+        if the player is stopping. Woken early by pause, resume and stop."""
+        while not self._ending.is_set():
             if self.paused:
-                await self._unpaused.wait()
-            delay_s = due_s + self._paused_s - time.monotonic()
+                self._unpaused.wait(0.1)
+                continue
+            delay_s = due_s + self._paused_s - time.perf_counter()
             if delay_s <= 0:
-                return
-            if delay_s <= _FINE_S:
-                await asyncio.sleep(0)  # the loop gets its turn (sockets, timers, Ctrl-C) first
-                delay_s = due_s + self._paused_s - time.monotonic()
-                if delay_s > 0:
-                    time.sleep(delay_s)
-                return
-            self._toggled.clear()
-            try:
-                async with asyncio.timeout(delay_s - _FINE_S):
-                    await self._toggled.wait()
-            except TimeoutError:
-                pass
+                return True
+            if delay_s > _FINE_S:
+                self._wake.clear()
+                self._wake.wait(delay_s - _FINE_S)
+            else:
+                time.sleep(delay_s)  # clock_nanosleep: within ~0.1 ms when the thread is scheduled
+        return False
+
+    def _in_flight_slot(self) -> bool:
+        """Wait until the loop has room for one more message (a burst never piles up in it)."""
+        while not self._in_flight.acquire(timeout=0.1):
+            if self._ending.is_set():
+                return False
+        return True
+
+    def _publish(self, message: BagMessage, due_s: float) -> None:
+        """On the loop: the write of one message that is due (held if paused meanwhile)."""
+        if self.paused:
+            self._held.append((message, due_s))  # keeps its in-flight slot until published
+            return
+        self._in_flight.release()
+        self._publishers[message.topic].publish(message.frame)
+        if self.lateness_s is not None:
+            self.lateness_s.append(time.perf_counter() - due_s - self._paused_s)
+        self._position_ns = message.log_time_ns
+        self.played += 1
 
     def _publish_clock(self) -> None:
         if self.paused or self._base is None or self._clock_publisher is None:
             return
-        elapsed_s = time.monotonic() - self._base[1] - self._paused_s
+        elapsed_s = time.perf_counter() - self._base[1] - self._paused_s
         now_ns = self._base[0] + int(elapsed_s * self.options.rate * 1e9)
         sec, nanosec = divmod(max(now_ns, self._position_ns), 1_000_000_000)
         self._clock_publisher.publish(Time(sec=sec, nanosec=nanosec))
+
+
+def _settle(done: asyncio.Future[None], error: BaseException | None) -> None:
+    if done.done():
+        return
+    if error is None:
+        done.set_result(None)
+    else:
+        done.set_exception(error)

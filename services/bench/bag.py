@@ -75,6 +75,7 @@ def measure_record_throughput(core: CoreHolder, *, duration_s: float) -> dict[st
         "kept": len(times) / sent["sent"],
         "publisher_rate": sent["rate"],
         "recorder_cpu": cpu_s / sent["wall_s"],
+        "recorder_us_per_msg": cpu_s / sent["sent"] * 1e6,  # what a core can keep up with: 1e6 / this
     }
 
 

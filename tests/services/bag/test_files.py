@@ -82,6 +82,42 @@ def test_the_mcap_library_reads_schemas_channels_and_metadata_on_its_own(tmp_pat
         assert [m.name for m in reader.iter_metadata()] == ["skydeck"]
 
 
+def test_the_mcap_library_checks_every_crc_and_index_of_a_file_of_many_chunks(tmp_path: Path) -> None:
+    """Skydeck writes MCAP's records itself (services.bag.mcap_file): the library's three readers
+    agree with it, checksums checked, also for a topic that first appears after some chunks."""
+    from mcap.reader import NonSeekingReader, SeekingReader
+    from mcap.stream_reader import StreamReader
+
+    path = tmp_path / "many.mcap"
+    writer = BagWriter.create(path, metadata={"command_line": "test"})
+    pose = writer.add_topic("/drone/pose", "geometry_msgs/msg/PoseStamped")
+    for i in range(4000):
+        writer.write(pose, pose_frame(i), START_NS + i)
+        if i == 1000:
+            writer.flush()
+            late = writer.add_topic("/late", "std_msgs/msg/String")
+        if i > 1000 and i % 4 == 0:
+            writer.write(late, '{"data":"x"}', START_NS + i)
+    writer.close()
+    with open(path, "rb") as stream:
+        reader = SeekingReader(stream, validate_crcs=True)
+        summary = reader.get_summary()
+        assert summary is not None and summary.statistics is not None
+        assert len(summary.chunk_indexes) >= 2 and summary.statistics.chunk_count == len(summary.chunk_indexes)
+        counts = {summary.channels[c].topic: n for c, n in summary.statistics.channel_message_counts.items()}
+        assert counts == {"/drone/pose": 4000, "/late": 749} and summary.statistics.message_count == 4749
+        assert (summary.statistics.message_start_time, summary.statistics.message_end_time) == (START_NS, START_NS + 3999)
+        in_order = [message.log_time for _, _, message in reader.iter_messages(log_time_order=True)]
+        assert len(in_order) == 4749 and in_order == sorted(in_order)
+        late_ones = list(reader.iter_messages(topics=["/late"], starting_at=START_NS + 2000))
+        assert len(late_ones) == 500
+    with open(path, "rb") as stream:
+        assert sum(1 for _ in NonSeekingReader(stream, validate_crcs=True).iter_messages()) == 4749
+    with open(path, "rb") as stream:
+        kinds = [type(record).__name__ for record in StreamReader(stream, validate_crcs=True).records]
+    assert kinds[:3] == ["Header", "Metadata", "Schema"] and kinds[-1] == "Footer"
+
+
 def test_bytes_are_base64_in_the_schema_as_foxglove_decodes_them(tmp_path: Path) -> None:
     from services.bag.schemas import schema_bytes
 

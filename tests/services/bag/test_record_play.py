@@ -249,3 +249,17 @@ async def test_what_cannot_be_played_is_one_clear_error(core, tmp_path: Path) ->
     with pytest.raises(BagError, match="/points is std_msgs/msg/String in the running system"):
         check_types([{"name": "/points", "type": "std_msgs/msg/String"}], {"/points": "geometry_msgs/msg/PointStamped"})
     check_types([{"name": "/points", "type": "geometry_msgs/msg/PointStamped"}], {"/points": "geometry_msgs/msg/PointStamped"})
+
+
+async def test_a_message_handed_over_as_a_pause_comes_waits_for_the_resume(core, tmp_path: Path) -> None:
+    """The timeline thread may hand a message to the loop just before a pause: it is held, not
+    published, and goes out first on resume (a paused player publishes nothing)."""
+    path = make_bag(tmp_path / "run.mcap", count=3)
+    with BagReader(path) as reader:
+        player = Player(reader, PlayOptions(), settings=_settings(core))
+        first = next(reader.messages(["/points"]))
+        player.pause()
+        player._publish(first, due_s=time.perf_counter())
+        assert player.played == 0
+        player.resume()
+        assert player.played == 1 and player.position_s == 0.0

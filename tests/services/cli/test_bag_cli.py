@@ -5,16 +5,19 @@ from __future__ import annotations
 
 import asyncio
 import os
+import re
 import signal
 import sys
 from pathlib import Path
 
 import pytest
 
-from services.bag import BagReader
+from services.bag import BagFileError, BagReader
 from services.launch.background import BackgroundProcess
+from shared_models.builtin_interfaces import Time
+from shared_models.geometry_msgs import PointStamped
 from tests.conftest import free_port, wait_until
-from tests.services.bag.test_record_play import Talker, make_bag
+from tests.services.bag.test_record_play import Listener, Talker, frames, make_bag, point_frame
 from tests.services.cli.test_cli import skydeck
 
 
@@ -43,6 +46,17 @@ async def test_ctrl_c_finishes_the_file_and_info_prints_it(core, start_node, tmp
     assert "Topic: /points | Type: geometry_msgs/msg/PointStamped | Count: 100 | Rate:" in out
     assert "Topic: /points_text | Type: std_msgs/msg/String | Count: 0" in out
     assert "Command line:      skydeck bag record /points /points_text -o" in out
+    assert re.search(r"^Skydeck:\s+\d", out, re.MULTILINE)  # the version that recorded it
+
+
+def recorded(path: Path, topic: str) -> int:
+    """Messages of ``topic`` readable in ``path`` now (0 while no chunk is complete)."""
+    try:
+        with BagReader(path) as bag:
+            found = bag.summary.topic(topic)
+    except BagFileError:
+        return 0
+    return found.count if found is not None else 0
 
 
 async def test_a_killed_recorder_leaves_a_file_info_and_play_still_read(core, start_node, tmp_path: Path) -> None:
@@ -55,9 +69,7 @@ async def test_a_killed_recorder_leaves_a_file_info_and_play_still_read(core, st
                 await asyncio.sleep(0.02)
         talker.send(300)
         path = tmp_path / "killed.mcap"
-        async with asyncio.timeout(20):  # the recorder writes its chunk within a second
-            while path.stat().st_size < 2000:
-                await asyncio.sleep(0.05)
+        await wait_until(lambda: recorded(path, "/points") == 300, timeout_s=20, what="the chunk on disk")  # within a second
     finally:
         process.stop(signal.SIGKILL)
     with BagReader(path) as bag:
@@ -116,6 +128,23 @@ async def test_play_with_its_flags_through_the_cli(core, tmp_path: Path) -> None
         looping.stop()
     played = int(next(line for line in looping.lines if line.startswith("played")).split()[1])
     assert looping.returncode == 0 and played > 45
+
+
+async def test_play_clock_publishes_the_recorded_clock_that_topics_leaves_out(core, start_node, tmp_path: Path) -> None:
+    """`bag play --clock --topics /points` of a recording with /clock: a use_sim_time node runs
+    on the recorded /clock (100 s to 199 s), not on the receive times (2023) nor its wall clock."""
+    path = make_bag(tmp_path / "run.mcap", count=100, period_ns=10_000_000, with_clock=True)
+    listener = await start_node(lambda s: Listener(s, {"/points": PointStamped, "/clock": Time}, use_sim_time=True))
+    status, out, err = await skydeck(
+        core.url, "bag", "play", str(path), "--clock", "--topics", "/points", "--wait-for-subscribers", timeout_s=60
+    )
+    assert status == 0, err
+    assert "played 200 messages" in out, out  # /points and the recorded /clock
+    await wait_until(lambda: len(frames(listener, "/points")) == 100, what="every /points message")
+    await wait_until(lambda: listener.get_clock().now().nanoseconds == 199 * 10**9, what="the last recorded /clock")
+    assert frames(listener, "/points") == [point_frame(i) for i in range(100)]
+    ticks = [Time.model_validate_json(frame).sec for frame in frames(listener, "/clock")]
+    assert ticks and ticks == list(range(200 - len(ticks), 200))  # in order from when the listener linked
 
 
 @pytest.mark.parametrize(
