@@ -7,6 +7,7 @@ import json
 import shutil
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 import yaml
@@ -204,21 +205,37 @@ async def test_bash_completes_verbs_flags_live_names_types_and_files(core, start
     assert await asyncio.to_thread(complete, "skydeck run con") == ["control"]
 
 
-@pytest.mark.skipif(shutil.which("zsh") is None, reason="zsh is not installed")
-def test_the_zsh_script_is_valid_zsh_and_names_the_completer() -> None:
-    script = subprocess.run(
-        [sys.executable, "-m", "services.cli", "completion", "zsh"], capture_output=True, text=True, timeout=30, check=True
-    ).stdout
-    assert "compdef _skydeck skydeck" in script
-    checked = subprocess.run(["zsh", "-n"], input=script, capture_output=True, text=True, timeout=30)
-    assert checked.returncode == 0, checked.stderr
-    # Loaded in a real zsh (with compinit), the completer function is defined.
-    loaded = subprocess.run(
-        ["zsh", "-f", "-c", 'autoload -Uz compinit && compinit -u; eval "$SCRIPT"; whence -w _skydeck'],
-        env={"SCRIPT": script, "PATH": "/usr/bin:/bin", "HOME": "/tmp"},
-        capture_output=True, text=True, timeout=30,
-    )
-    assert "_skydeck: function" in loaded.stdout, loaded.stderr
+def _zsh_complete(core_url: str, lines: list[str], cwd: Path) -> list[tuple[list[str], str]]:
+    """Complete each of ``lines`` in a real interactive zsh (compinit, the script sourced, Tab
+    pressed in a pseudo-terminal: zsh_complete.zsh); for each, what was offered and the line after."""
+    assert shutil.which("zsh"), "zsh is a test dependency: run `make test-deps`"
+    result = subprocess.run(
+        ["zsh", "-f", str(Path(__file__).with_name("zsh_complete.zsh")), *lines],
+        env={"PATH": f"{Path(sys.executable).parent}:/usr/bin:/bin", "HOME": str(cwd), "SKYDECK_CORE_URL": core_url},
+        capture_output=True, text=True, timeout=90, cwd=cwd,
+    )  # fmt: skip
+    assert result.returncode == 0, result.stderr
+    answers = [line.split("\t") for line in result.stdout.splitlines()]
+    assert len(answers) == len(lines), result.stdout
+    return [(offered.split("|") if offered else [], buffer) for offered, buffer in answers]
+
+
+@pytest.mark.timeout(120)
+async def test_zsh_completes_verbs_flags_live_names_and_files(core, start_node, tmp_path) -> None:
+    await start_node(Stamped)
+    (tmp_path / "my_launch.yaml").write_text("nodes: []\n")
+    lines = {
+        "skydeck to": (["topic"], "skydeck topic "),
+        "skydeck topic echo --f": (["--field"], "skydeck topic echo --field "),
+        "skydeck topic echo /st": (["/stamped"], "skydeck topic echo /stamped "),
+        "skydeck service call /stamped/p": (["/stamped/ping"], "skydeck service call /stamped/ping "),
+        "skydeck node info /sta": (["/stamped"], "skydeck node info /stamped "),
+        "skydeck launch my_l": (["my_launch.yaml"], "skydeck launch my_launch.yaml "),  # a path, from _files
+    }
+    answers = await asyncio.to_thread(_zsh_complete, core.url, [*lines, "skydeck topic "], tmp_path)
+    assert dict(zip(lines, answers[:-1], strict=True)) == lines
+    offered, buffer = answers[-1]
+    assert {"echo", "hz", "pub", "type"} <= set(offered) and buffer == "skydeck topic "  # several: listed
 
 
 async def test_topic_list_verbose_counts_publishers_and_subscribers(core, start_node) -> None:
