@@ -17,12 +17,13 @@ from shared_models.geometry_msgs import Point, PointStamped
 from shared_models.sensor_msgs import LaserScan
 from shared_models.std_msgs import Header, String
 from shared_models.std_srvs import SetBool, SetBoolResponse, Trigger, TriggerResponse
-from tests.conftest import free_port
+from tests.conftest import free_port, wait_until
 from tests.services.cli.test_cli import skydeck
 
 
 class Stamped(Node):
-    """Stamped points at 50 Hz, a scan, a string, and two services of different types."""
+    """Stamped points at 50 Hz, a scan, a string, a subscriber, and services of different types
+    (one that never answers)."""
 
     def __init__(self, settings) -> None:
         super().__init__("stamped", settings=settings)
@@ -32,6 +33,13 @@ class Stamped(Node):
         self.create_timer(0.02, self.tick)
         self.create_service(Trigger, "/stamped/ping", lambda request: TriggerResponse(success=True))
         self.create_service(SetBool, "/stamped/enable", lambda request: SetBoolResponse(success=True))
+        self.create_service(Trigger, "/stamped/stall", self.stall)
+        self.heard: list[String] = []
+        self.create_subscription(String, "/heard", self.heard.append, 10)
+
+    async def stall(self, request: Trigger.Request) -> TriggerResponse:
+        await asyncio.Event().wait()  # never answers: the caller's --timeout ends the call
+        return TriggerResponse()
 
     def tick(self) -> None:
         header = Header(stamp=self.get_clock().now().to_msg(), frame_id="odom")
@@ -72,6 +80,65 @@ async def test_echo_field_csv_no_arr_and_qos_depth(core, start_node) -> None:
     assert status == 1 and "the message has no point.w" in err and err.count("\n") == 1
     status, _, err = await skydeck(core.url, "topic", "echo", "/stamped", "--qos-depth", "0")
     assert status == 2 and "positive integer" in err
+
+
+async def test_echo_rate_and_timeout(core, start_node) -> None:
+    await start_node(Stamped)
+    status, out, _ = await skydeck(core.url, "topic", "echo", "/stamped", "--rate", "5", "-n", "3", "--json")
+    seqs = [json.loads(line)["header"]["seq"] for line in out.splitlines() if line.startswith("{")]
+    # At most 5 a second of a 50 Hz topic, the newest winning: messages are skipped (without
+    # --rate the stream's queue gives every one, seq by seq).
+    assert status == 0 and len(seqs) == 3 and seqs[-1] - seqs[0] > 2, seqs
+    status, out, err = await skydeck(core.url, "topic", "echo", "/silent", "--timeout", "0.5")
+    assert status == 1 and err == "skydeck: error: no message on /silent within 0.5 s\n"
+    assert "WARNING: topic [/silent] does not appear to be published yet" in out
+
+
+async def test_pub_times_at_a_rate(core, start_node) -> None:
+    stamped = await start_node(Stamped)
+    status, out, err = await skydeck(core.url, "topic", "pub", "/heard", "std_msgs/msg/String", "{data: hi}", "-r", "20", "-t", "3")
+    # It exits (at 20 Hz without -t it would publish until Ctrl-C); the subscriber links to the
+    # new publication while it runs, so it hears some of the three, the last one latched.
+    assert status == 0 and "publishing #1: String(" in out, err
+    await wait_until(lambda: bool(stamped.heard), what="the published strings")
+    assert {message.data for message in stamped.heard} == {"hi"}
+
+
+async def test_service_call_timeout_and_interface_list_of_messages(core, start_node) -> None:
+    await start_node(Stamped)
+    status, _, err = await skydeck(core.url, "service", "call", "/stamped/stall", "--timeout", "0.5")
+    assert status == 1 and err == "skydeck: error: no answer from /stamped/stall within 0.5 s (--timeout to wait longer)\n"
+    status, out, _ = await skydeck(core.url, "interface", "list", "--only-msgs")
+    names = out.splitlines()
+    assert status == 0 and "geometry_msgs/msg/Point" in names and not any("/srv/" in name for name in names)
+    status, out, _ = await skydeck(core.url, "interface", "list", "-m")
+    assert out.splitlines() == names
+
+
+@pytest.mark.parametrize(
+    ("args", "error"),
+    [
+        (["topic", "info", "/nope"], "unknown topic /nope: see `skydeck topic list`"),
+        (["topic", "pub", "--once", "/stamped", "std_msgs/msg/String", "{data: x}"],
+         "/stamped is geometry_msgs/msg/PointStamped, not std_msgs/msg/String"),
+        (["topic", "pub", "--once", "/heard", "std_srvs/srv/Trigger"], "std_srvs/srv/Trigger is a service type: use `skydeck service call`"),
+        (["topic", "hz", "/bad//name"], "invalid"),
+        (["service", "info", "/nope"], "unknown service /nope: see `skydeck service list`"),
+        (["service", "call", "/stamped/enable", "{data: maybe}"], "data"),
+        (["node", "kill", "/nobody"], "unknown node /nobody: see `skydeck node list`"),
+        (["node", "info", "bad name"], "'bad name'"),
+        (["interface", "proto", "nope/msg/Nothing"], "unknown interface"),
+        (["launch", "--show-args", "no_such_launch"], "no such launch file"),
+        (["completion", "fish"], "invalid choice: 'fish'"),
+        (["bench", "--out", "pyproject.toml/bench/results.json"], "cannot write pyproject.toml/bench/results.json: "),
+    ],
+)  # fmt: skip
+async def test_bad_input_is_one_error_line_and_a_non_zero_status(core, start_node, args, error) -> None:
+    await start_node(Stamped)
+    status, _, err = await skydeck(core.url, *args)
+    errors = [line for line in err.splitlines() if "error:" in line]
+    assert status != 0 and len(errors) == 1 and error in errors[0], err
+    assert all(line == errors[0] or line.startswith(("usage:", " ")) for line in err.splitlines()), err  # argparse's usage
 
 
 async def test_hz_window_bw_and_delay(core, start_node) -> None:
