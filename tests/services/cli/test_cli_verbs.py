@@ -181,7 +181,7 @@ async def test_service_type_and_find(core, start_node) -> None:
     status, out, _ = await skydeck(core.url, "service", "type", "/stamped/enable")
     assert out == "std_srvs/srv/SetBool\n"
     status, out, _ = await skydeck(core.url, "service", "find", "std_srvs/srv/Trigger")
-    assert status == 0 and out.splitlines() == ["/stamped/ping"]
+    assert status == 0 and out.splitlines() == ["/stamped/ping", "/stamped/stall"]
     status, _, err = await skydeck(core.url, "service", "find", "std_msgs/msg/String")
     assert status == 1 and "topic find" in err
     status, _, err = await skydeck(core.url, "service", "type", "/stamped/nope")
