@@ -21,8 +21,6 @@ from pathlib import Path
 from services.cli.main import build_parser
 
 TESTS = Path(__file__).resolve().parents[2]
-# Verbs that are tested through their own harness rather than the CLI's arguments.
-NOT_CLI = {"bench"}  # `skydeck bench` is run by tests/services/bench through run_bench
 SHELL_FILES = ("*.zsh", "*.sh")
 
 
@@ -102,8 +100,6 @@ def test_every_verb_and_flag_is_used_with_its_verb_in_a_test() -> None:
     lines = command_lines()
     missing = []
     for path, action in _walk(build_parser(), ()):
-        if path[:1] and path[0] in NOT_CLI:
-            continue
         rests = [rest for rest in (_after(line, path) for line in lines) if rest is not None]
         if action is None:
             if not rests:
