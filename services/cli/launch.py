@@ -36,7 +36,7 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.add_argument("--robots", type=int, help="robot world: number of robots, each in its namespace (default 1)")
     p.add_argument("--exclude", default="", help="nodes to leave out, comma-separated (e.g. perception,ai)")
     add_endpoint_flags(p)
-    p.set_defaults(func=_launch)
+    p.set_defaults(func=_launch, extra_positionals="launch_args")  # NAME:=VALUE after options too
 
 
 def _launch(args: argparse.Namespace) -> int:

@@ -139,7 +139,7 @@ async def test_the_cli_shows_arguments_and_refuses_unknown_ones_in_one_line(tmp_
     assert status == 0 and "    'world':\n        no description given\n        (required)" in out
     status, out, _ = await skydeck(url, "launch", "tests/ros/corpus/ros1/ros_workshop/launch/nodes.launch", "--show-args")
     assert status == 0 and "    'use_sim_time':" in out
-    status, _, err = await skydeck(url, "launch", str(_write(tmp_path)), "world:=x", "nope:=1")
+    status, _, err = await skydeck(url, "launch", str(_write(tmp_path)), "world:=x", "--speed", "2", "nope:=1")
     assert status == 1 and err.count("\n") == 1 and "nope:=1: no such launch argument" in err
     status, _, err = await skydeck(url, "launch", str(_write(tmp_path)), "world")
     assert status == 1 and "launch arguments are NAME:=VALUE" in err
@@ -165,8 +165,8 @@ async def test_an_argument_given_on_the_command_line_reaches_the_node(tmp_path: 
     )
     base = free_port_block(2)
     launch = BackgroundProcess(
-        [sys.executable, "-m", "services.cli", "launch", str(path), "ns:=robot7", "--base-port", str(base),
-         "--rosbridge-port", "0", "--foxglove-port", "0"],
+        [sys.executable, "-m", "services.cli", "launch", str(path), "--base-port", str(base),
+         "--rosbridge-port", "0", "--foxglove-port", "0", "ns:=robot7"],  # after the options, as roslaunch takes them
         name="launch", env={**os.environ, "PYTHONUNBUFFERED": "1"},
     )  # fmt: skip
     try:
