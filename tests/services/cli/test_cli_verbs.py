@@ -253,8 +253,13 @@ def _bash_complete(core_url: str, line: str) -> list[str]:
     return [word for word in result.stdout.splitlines() if word]
 
 
-async def test_bash_completes_verbs_flags_live_names_types_and_files(core, start_node) -> None:
+LAUNCH_WITH_ARGUMENTS = "arguments:\n  rate: {default: '1'}\n  world: {}\nnodes: [{name: core, run: core, port_offset: 0}]\n"
+
+
+async def test_bash_completes_verbs_flags_live_names_types_and_files(core, start_node, tmp_path) -> None:
     await start_node(Stamped)
+    launch_file = tmp_path / "my_launch.yaml"
+    launch_file.write_text(LAUNCH_WITH_ARGUMENTS)
 
     def complete(line: str) -> list[str]:
         return _bash_complete(core.url, line)
@@ -270,6 +275,8 @@ async def test_bash_completes_verbs_flags_live_names_types_and_files(core, start
     assert await asyncio.to_thread(complete, "skydeck bag info test_f") == ["test_files.py"]  # a path
     assert await asyncio.to_thread(complete, "skydeck bag record -o test_r") == ["test_record_play.py"]
     assert await asyncio.to_thread(complete, "skydeck run con") == ["control"]
+    assert await asyncio.to_thread(complete, f"skydeck launch {launch_file} ") == ["rate:=", "world:="]
+    assert await asyncio.to_thread(complete, f"skydeck launch {launch_file} --speed 2 rate:=3 w") == ["world:="]
 
 
 def _zsh_complete(core_url: str, lines: list[str], cwd: Path) -> list[tuple[list[str], str]]:
@@ -290,7 +297,7 @@ def _zsh_complete(core_url: str, lines: list[str], cwd: Path) -> list[tuple[list
 @pytest.mark.timeout(120)
 async def test_zsh_completes_verbs_flags_live_names_and_files(core, start_node, tmp_path) -> None:
     await start_node(Stamped)
-    (tmp_path / "my_launch.yaml").write_text("nodes: []\n")
+    (tmp_path / "my_launch.yaml").write_text(LAUNCH_WITH_ARGUMENTS)
     lines = {
         "skydeck to": (["topic"], "skydeck topic "),
         "skydeck topic echo --f": (["--field"], "skydeck topic echo --field "),
@@ -298,6 +305,7 @@ async def test_zsh_completes_verbs_flags_live_names_and_files(core, start_node, 
         "skydeck service call /stamped/p": (["/stamped/ping"], "skydeck service call /stamped/ping "),
         "skydeck node info /sta": (["/stamped"], "skydeck node info /stamped "),
         "skydeck launch my_l": (["my_launch.yaml"], "skydeck launch my_launch.yaml "),  # a path, from _files
+        "skydeck launch my_launch.yaml rate:=2 ": (["world:="], "skydeck launch my_launch.yaml rate:=2 world:="),  # no space
     }
     answers = await asyncio.to_thread(_zsh_complete, core.url, [*lines, "skydeck topic "], tmp_path)
     assert dict(zip(lines, answers[:-1], strict=True)) == lines
