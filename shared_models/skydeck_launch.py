@@ -6,6 +6,8 @@ the launcher) knows the type of a service the graph shows (``/api/interfaces``, 
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 from shared_models._message import Bool, Message, ServiceType, String
 
 __all__ = ["KillNode", "KillNodeRequest", "KillNodeResponse"]
@@ -20,12 +22,21 @@ class KillNodeRequest(Message):
 
 
 class KillNodeResponse(Message):
-    """Whether the supervisor stopped it, and what it did or why not."""
+    """Whether the supervisor stopped it, what it did or why not (``message``, for people), and
+    ``reason``, one of the constants, for programs (``skydeck node kill`` picks its fallback by it)."""
 
     __ros_type__ = "skydeck_launch/srv/KillNode_Response"
+    __ros_constants__ = ("KILLED", "UNKNOWN_NODE", "NOT_LAUNCHED", "PROTECTED", "NOT_RUNNING")
+
+    KILLED: ClassVar[String] = "killed"  # stopped; not respawned
+    UNKNOWN_NODE: ClassVar[String] = "unknown_node"  # no node of that name in the graph or the launch
+    NOT_LAUNCHED: ClassVar[String] = "not_launched"  # in the graph, but not started by this launch
+    PROTECTED: ClassVar[String] = "protected"  # the core: stop the whole launch instead
+    NOT_RUNNING: ClassVar[String] = "not_running"  # a node of the launch that is not running now
 
     success: Bool = False
     message: String = ""
+    reason: String = ""
 
 
 class KillNode(ServiceType):

@@ -4,10 +4,12 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
+from pathlib import Path
 
 from services.cli.errors import CliError
 
-__all__ = ["known_type", "node_name", "positive_float", "positive_int", "ros_name"]
+__all__ = ["known_type", "node_name", "positive_float", "positive_int", "ros_name", "writable_file"]
 
 
 def positive_int(text: str) -> int:
@@ -30,6 +32,22 @@ def positive_float(text: str) -> float:
     if not (value > 0 and math.isfinite(value)):
         raise argparse.ArgumentTypeError(f"expected a positive number, got {text!r}")
     return value
+
+
+def writable_file(text: str) -> Path:
+    """argparse type: a file path that can be written (missing folders will be made), checked
+    before any work is done: a benchmark's results must not be lost at the end of the run."""
+    path = Path(text).expanduser()
+    existing = next(folder for folder in path.absolute().parents if folder.exists())
+    if path.is_dir():
+        problem = "it is a folder"
+    elif not existing.is_dir():
+        problem = f"{existing} is not a folder"
+    elif not os.access(existing, os.W_OK) or (path.exists() and not os.access(path, os.W_OK)):
+        problem = "permission denied"
+    else:
+        return path
+    raise argparse.ArgumentTypeError(f"cannot write {text}: {problem}")
 
 
 def node_name(text: str) -> str:

@@ -6,7 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from services.cli.arguments import positive_float
+from services.cli.arguments import positive_float, writable_file
 from services.cli.errors import CliError
 
 __all__ = ["add_parser"]
@@ -24,7 +24,7 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
         ),
     )
     p.add_argument("--quick", action="store_true", help="short run for CI (well under 3 minutes on 2 cores)")
-    p.add_argument("--out", type=Path, metavar="FILE.json", help="write the results as JSON")
+    p.add_argument("--out", type=writable_file, metavar="FILE.json", help="write the results as JSON")
     p.add_argument(
         "--plots",
         type=Path,

@@ -7,7 +7,8 @@ The script asks ``skydeck completion complete`` for the candidates of the word b
 giving it the words so far in ``SKYDECK_COMP_WORDS`` (one a line) and the word's index in
 ``SKYDECK_COMP_CWORD``. Candidates come from the command line's own parser (verbs and flags)
 and, for names, from the running system (``/api/graph``: topics, services, nodes) or the type
-catalogue; an argument that is a file answers ``__files__``, and the shell lists files.
+catalogue; an argument that is a file answers ``__files__``, and the shell lists files; after a
+launch file, its launch arguments as ``name:=`` (no space after them: the value follows).
 """
 
 from __future__ import annotations
@@ -43,6 +44,7 @@ _skydeck() {
         COMPREPLY=($(compgen -f -- "${COMP_WORDS[COMP_CWORD]}"))
     else
         COMPREPLY=($(compgen -W "$candidates" -- "${COMP_WORDS[COMP_CWORD]}"))
+        [[ "${COMPREPLY[0]}" == *:= ]] && compopt -o nospace 2>/dev/null  # a launch argument: its value follows
     fi
 }
 complete -F _skydeck skydeck
@@ -56,6 +58,8 @@ _skydeck() {
         "${words[1]}" completion complete 2>/dev/null)}")
     if [[ "${candidates[1]}" == "__files__" ]]; then
         _files
+    elif [[ "${candidates[1]}" == *:= ]]; then
+        compadd -S '' -- "${candidates[@]}"  # a launch argument: its value follows
     else
         compadd -- "${candidates[@]}"
     fi
@@ -100,7 +104,7 @@ def candidates(parser: argparse.ArgumentParser, words: list[str]) -> list[str]:
     typed = words[-1] if words else ""
     done = words[:-1]
     path: list[str] = []
-    positional = 0
+    positionals: list[str] = []
     expecting: argparse.Action | None = None
     for word in done:
         if expecting is not None:
@@ -113,14 +117,14 @@ def candidates(parser: argparse.ArgumentParser, words: list[str]) -> list[str]:
         if sub is not None and word in sub.choices:
             parser = sub.choices[word]
             path.append(word)
-            positional = 0
+            positionals = []
             continue
         if word.startswith("-"):
             action = _option(parser, word)
             if action is not None and action.nargs != 0:
                 expecting = action
             continue
-        positional += 1
+        positionals.append(word)
     if expecting is not None and not typed.startswith("-"):
         return _option_values(expecting, typed)
     if typed.startswith("-"):
@@ -128,7 +132,7 @@ def candidates(parser: argparse.ArgumentParser, words: list[str]) -> list[str]:
     sub = _subcommands(parser)
     if sub is not None:
         return sorted(name for name in sub.choices if name.startswith(typed) and name != "complete")
-    return _positional_values(parser, path, positional, typed)
+    return _positional_values(parser, path, positionals, typed)
 
 
 def _subcommands(parser: argparse.ArgumentParser) -> argparse._SubParsersAction[argparse.ArgumentParser] | None:
@@ -149,13 +153,16 @@ def _option_values(action: argparse.Action, typed: str) -> list[str]:
     return []
 
 
-def _positional_values(parser: argparse.ArgumentParser, path: list[str], index: int, typed: str) -> list[str]:
+def _positional_values(parser: argparse.ArgumentParser, path: list[str], given: list[str], typed: str) -> list[str]:
     positionals = [a for a in parser._actions if not a.option_strings and not isinstance(a, argparse._SubParsersAction)]
     if not positionals:
         return []
+    index = len(given)
     action = positionals[min(index, len(positionals) - 1)]
     if index >= len(positionals) and action.nargs not in ("*", "+", argparse.REMAINDER):
         return []
+    if path[:1] == ["launch"] and action.dest == "launch_args":
+        return _launch_arguments(given[0], given[1:], typed)
     if action.choices is not None:
         return sorted(str(c) for c in action.choices if str(c).startswith(typed) and c != "complete")
     if path[:1] == ["run"] and action.dest == "node":  # a built-in, or a .py file
@@ -176,6 +183,18 @@ def _positional_values(parser: argparse.ArgumentParser, path: list[str], index: 
     if kind is not None:
         return _live(kind, typed)
     return []
+
+
+def _launch_arguments(file: str, given: list[str], typed: str) -> list[str]:
+    """``name:=`` for each argument the launch file declares and the line does not give yet."""
+    from services.launch import LaunchError, launch_arguments
+
+    try:
+        declared = launch_arguments(file)
+    except LaunchError:
+        return []
+    taken = {word.partition(":=")[0] for word in given}
+    return [f"{name}:=" for name in declared if name not in taken and f"{name}:=".startswith(typed)]
 
 
 def _live(kind: str, typed: str) -> list[str]:

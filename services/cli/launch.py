@@ -21,7 +21,13 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
         help="a YAML launch file, a roslaunch XML file (.launch), or a shipped one by name: workshop (the default), robot",
     )
     p.add_argument(
-        "launch_args", nargs="*", metavar="NAME:=VALUE", help="a roslaunch file's <arg> values, as roslaunch takes them"
+        "launch_args",
+        nargs="*",
+        metavar="NAME:=VALUE",
+        help="the launch file's arguments (a YAML file's `arguments:`, a roslaunch file's <arg>s)",
+    )
+    p.add_argument(
+        "--show-args", action="store_true", help="list the arguments the launch file takes, with defaults, and exit"
     )
     p.add_argument("--base-port", type=int, default=8000, help="core on N, sim N+1, perception N+2, ... (default 8000)")
     p.add_argument("--speed", default="1", help="simulator speed: times real time, or 'max' (default 1)")
@@ -30,12 +36,19 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.add_argument("--robots", type=int, help="robot world: number of robots, each in its namespace (default 1)")
     p.add_argument("--exclude", default="", help="nodes to leave out, comma-separated (e.g. perception,ai)")
     add_endpoint_flags(p)
-    p.set_defaults(func=_launch)
+    p.set_defaults(func=_launch, extra_positionals="launch_args")  # NAME:=VALUE after options too
 
 
 def _launch(args: argparse.Namespace) -> int:
     # Imported here: the supervisor is only needed by this verb.
-    from services.launch import LaunchOptions, run_launch
+    from services.launch import LaunchOptions, launch_arguments, run_launch, show_arguments
+
+    if args.file is not None and ":=" in args.file:  # `skydeck launch name:=value`: the default file's
+        args.launch_args.insert(0, args.file)
+        args.file = None
+    if args.show_args:
+        print(show_arguments(launch_arguments(args.file)))
+        return 0
 
     options = LaunchOptions(
         base_port=args.base_port,

@@ -44,6 +44,10 @@ def main(argv: list[str] | None = None) -> int:
     """Run one command; returns the exit status."""
     parser = build_parser()
     args, extra = parser.parse_known_args(argv)
+    rest = getattr(args, "extra_positionals", None)
+    if rest is not None:  # argparse leaves positionals that follow options (`launch F --speed 2 a:=1`)
+        getattr(args, rest).extend(word for word in extra if not word.startswith("-"))
+        extra = [word for word in extra if word.startswith("-")]
     if extra and args.command != "run" and args.command != "core":
         parser.error(f"unrecognized arguments: {' '.join(extra)}")
     args.extra = extra

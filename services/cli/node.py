@@ -91,6 +91,7 @@ def _ping(args: argparse.Namespace) -> int:
 
 def _kill(args: argparse.Namespace) -> int:
     from services.launch.control import KILL_SERVICE, LAUNCH_NODE
+    from shared_models.skydeck_launch import KillNodeResponse
 
     name = node_name(args.node)
     node = _lookup(name)
@@ -101,12 +102,12 @@ def _kill(args: argparse.Namespace) -> int:
         reply = post_json(KILL_SERVICE, {"node": name}, timeout_s=15.0)
         if reply.status_code != 200:
             raise CliError(f"the launch could not be asked: {error_detail(reply)} (HTTP {reply.status_code})")
-        answer = reply.json()
-        if answer.get("success"):
-            print(answer["message"])
+        answer = KillNodeResponse.model_validate(reply.json())
+        if answer.success:
+            print(answer.message)
             return 0
-        if "not started by this launch" not in answer.get("message", ""):
-            raise CliError(answer.get("message", "the launch refused"))
+        if answer.reason != KillNodeResponse.NOT_LAUNCHED:  # started elsewhere: stopped here if it runs here
+            raise CliError(answer.message or f"the launch refused ({answer.reason})")
     return _kill_local(name, node)
 
 

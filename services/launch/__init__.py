@@ -7,6 +7,7 @@ Errors: ``LaunchError`` (a launch cannot go ahead), and its subclass ``LaunchFil
 launch file is missing or wrong); both carry one line for the user.
 """
 
+from services.launch.arguments import LaunchArgument, show_arguments
 from services.launch.errors import LaunchError, LaunchFileError
 from services.launch.plan import (
     DEFAULT_BASE_PORT,
@@ -17,7 +18,7 @@ from services.launch.plan import (
     plan_launch,
 )
 from services.launch.roslaunch import RosLaunch, RosNode, is_roslaunch_file, load_roslaunch_file
-from services.launch.run import core_answers, run_launch
+from services.launch.run import core_answers, launch_arguments, run_launch
 from services.launch.spec import (
     BUILTIN_RUNS,
     PLACEHOLDERS,
@@ -35,6 +36,7 @@ __all__ = [
     "DEFAULT_BASE_PORT",
     "PLACEHOLDERS",
     "CommandFor",
+    "LaunchArgument",
     "LaunchError",
     "LaunchFileError",
     "LaunchOptions",
@@ -52,9 +54,11 @@ __all__ = [
     "default_launch_file",
     "find_launch_file",
     "is_roslaunch_file",
+    "launch_arguments",
     "load_launch_file",
     "load_roslaunch_file",
     "plan_launch",
     "run_launch",
     "shipped_launch_files",
+    "show_arguments",
 ]

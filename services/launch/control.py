@@ -21,13 +21,12 @@ KILL_SERVICE = "/skydeck_launch/kill_node"
 
 
 class LaunchControl(Node):
-    """The supervisor's node; ``kill(name)`` answers ``(success, message)``."""
+    """The supervisor's node; ``kill(name)`` gives the service's answer."""
 
-    def __init__(self, kill: Callable[[str], Awaitable[tuple[bool, str]]], settings: NodeSettings) -> None:
+    def __init__(self, kill: Callable[[str], Awaitable[KillNodeResponse]], settings: NodeSettings) -> None:
         super().__init__(LAUNCH_NODE, settings=settings)
         self._kill = kill
         self.create_service(KillNode, KILL_SERVICE, self._on_kill)
 
     async def _on_kill(self, request: KillNodeRequest) -> KillNodeResponse:
-        success, message = await self._kill(request.node)
-        return KillNodeResponse(success=success, message=message)
+        return await self._kill(request.node)

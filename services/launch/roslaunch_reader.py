@@ -18,13 +18,14 @@ from typing import Any
 
 import yaml
 
+from services.launch.arguments import LaunchArgument
 from services.launch.errors import LaunchFileError
 from services.launch.ros_packages import PackageNotFound, RosPackage, find_package, package_of
 from services.launch.roslaunch import RosNode
 from services.runtime.rosparam import check_parameter_value, parameter_tokens
 from shared_models.names import InvalidNameError, resolve_name, resolve_node_name
 
-__all__ = ["read_roslaunch"]
+__all__ = ["declared_arguments", "read_roslaunch"]
 
 _MAX_INCLUDE_DEPTH = 16
 _SUBSTITUTION = re.compile(r"\$\(([^()]*)\)")
@@ -514,3 +515,23 @@ def read_roslaunch(path: Path, args: dict[str, str]) -> tuple[list[RosNode], lis
     reader = _Reader()
     reader.read_file(_Scope(path, package_of(path), "/", {}, {}, args, set(), [], {}))
     return reader.nodes, reader.parameters, reader.warnings
+
+
+def declared_arguments(path: Path) -> dict[str, LaunchArgument]:
+    """The arguments a roslaunch file takes from its command line (``roslaunch --ros-args``):
+    its settable ``<arg>``s (those with ``value=`` are fixed), in its groups too, in file
+    order; defaults as written (a ``$(...)`` in one is shown, not resolved)."""
+    found: dict[str, LaunchArgument] = {}
+
+    def walk(element: _Element) -> None:
+        for child in element.children:
+            if child.tag == "arg" and "name" in child.attributes and "value" not in child.attributes:
+                found.setdefault(
+                    child.attributes["name"],
+                    LaunchArgument(default=child.attributes.get("default"), description=child.attributes.get("doc", "")),
+                )
+            elif child.tag == "group":
+                walk(child)
+
+    walk(_read_xml(path))
+    return found

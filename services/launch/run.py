@@ -20,13 +20,13 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import TextIO
 
-from services.launch.errors import LaunchError
+from services.launch.arguments import LaunchArgument
 from services.launch.plan import LaunchOptions
 from services.launch.roslaunch import is_roslaunch_file, load_roslaunch_file
 from services.launch.spec import find_launch_file, load_launch_file
 from services.launch.supervisor import Supervisor
 
-__all__ = ["core_answers", "run_launch"]
+__all__ = ["core_answers", "launch_arguments", "run_launch"]
 
 _CORE_PROBE_S = 1.0
 
@@ -39,8 +39,8 @@ def run_launch(
     launch_args: Mapping[str, str] | None = None,
 ) -> int:
     """``skydeck launch``: load the launch file (default: the workshop's; a bare name such as
-    ``robot`` names a shipped one; a ``.launch``/``.xml`` file is roslaunch XML, with
-    ``launch_args`` as its ``name:=value`` arguments) and run it until stopped.
+    ``robot`` names a shipped one; a ``.launch``/``.xml`` file is roslaunch XML), with
+    ``launch_args`` as its ``name:=value`` arguments, and run it until stopped.
 
     A roslaunch file starts the core only when none answers at the launch's core URL, as
     roslaunch starts roscore only when none runs; the launch's own control node comes with a
@@ -55,12 +55,22 @@ def run_launch(
         start_core = not core_answers(f"http://127.0.0.1:{options.base_port}")
         spec, parameters = ros.spec(start_core=start_core), ros.parameters
     else:
-        if launch_args:
-            raise LaunchError(f"{', '.join(launch_args)}: name:=value arguments are for roslaunch files (.launch)")
-        spec, parameters = load_launch_file(file), ()
+        spec, parameters = load_launch_file(file, launch_args or {}), ()
         start_core = True
     supervisor = Supervisor(spec, options, out=out, control=start_core, parameters=parameters)
     return asyncio.run(supervisor.run())
+
+
+def launch_arguments(path: str | Path | None = None) -> dict[str, LaunchArgument]:
+    """The arguments the launch file takes as ``name:=value`` (``skydeck launch FILE
+    --show-args``), in the order it declares them: a YAML file's ``arguments:``, a roslaunch
+    file's settable ``<arg>``s. Raises ``LaunchFileError`` as loading it does."""
+    file = find_launch_file(path)
+    if is_roslaunch_file(file):
+        from services.launch.roslaunch_reader import declared_arguments
+
+        return declared_arguments(file)
+    return dict(load_launch_file(file).arguments)
 
 
 def core_answers(url: str) -> bool:

@@ -12,7 +12,9 @@
 
 Each node listens on ``base_port + port_offset``. Arguments and environment values may use the
 placeholders ``{speed}``, ``{seed}``, ``{boxes}``, ``{robots}`` and ``{base_port}``, filled
-from the launch options (``{{`` is a literal brace). ``load_launch_file`` turns every problem into one
+from the launch options, and ``{name}`` for each launch argument the file declares under
+``arguments:`` (:mod:`services.launch.arguments`, given as ``name:=value``); ``{{`` is a literal
+brace. ``load_launch_file`` turns every problem into one
 ``LaunchFileError`` line that names the file and the place, e.g.
 ``launch.yaml: nodes[2].port_offset: Input should be greater than or equal to 0``.
 """
@@ -20,6 +22,7 @@ from the launch options (``{{`` is a literal brace). ``load_launch_file`` turns 
 from __future__ import annotations
 
 import string
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -30,13 +33,15 @@ from pydantic import (
     ConfigDict,
     Field,
     ValidationError,
+    ValidationInfo,
     field_validator,
     model_validator,
 )
 from pydantic_core import ErrorDetails, PydanticCustomError
 
 from services.builtin_nodes import BUILTIN_NODES
-from services.launch.errors import LaunchFileError
+from services.launch.arguments import LaunchArgument, fill_arguments, substitute
+from services.launch.errors import LaunchError, LaunchFileError
 
 __all__ = [
     "BUILTIN_RUNS",
@@ -59,9 +64,12 @@ PLACEHOLDERS = ("speed", "seed", "boxes", "robots", "base_port")
 # roslaunch file's node in a namespace is named by its graph name: robot1/talker).
 _NAME_PATTERN = r"^[A-Za-z][A-Za-z0-9_-]*(/[A-Za-z][A-Za-z0-9_-]*)*$"
 _RESERVED_NAMES = ("launch",)  # the supervisor's own lines start with "[launch]"
+_ARGUMENT_PATTERN = r"^[A-Za-z_][A-Za-z0-9_]*$"
 
 
-def _check_placeholders(text: str) -> str:
+def _check_placeholders(text: str, info: ValidationInfo) -> str:
+    # The file's declared arguments come as the validation's context (load_launch_file).
+    arguments = tuple((info.context or {}).get("arguments", ()))
     try:
         fields = list(string.Formatter().parse(text))
     except ValueError as error:
@@ -71,10 +79,11 @@ def _check_placeholders(text: str) -> str:
     for _literal, field, spec, conversion in fields:
         if field is None:
             continue
-        if field not in PLACEHOLDERS:
-            known = ", ".join(f"{{{name}}}" for name in PLACEHOLDERS)
+        if field not in PLACEHOLDERS and field not in arguments:
+            known = ", ".join(f"{{{name}}}" for name in (*PLACEHOLDERS, *arguments))
             raise PydanticCustomError(
-                "placeholder", f"unknown placeholder {{{field}}} in {text!r}; known: {known}"
+                "placeholder",
+                f"unknown placeholder {{{field}}} in {text!r}; known: {known} (or declare it under `arguments:`)",
             )
         if spec or conversion:
             raise PydanticCustomError(
@@ -124,11 +133,25 @@ class NodeSpec(BaseModel):
 
 
 class LaunchSpec(BaseModel):
-    """A whole launch: the nodes in start order (the core is started first wherever it is listed)."""
+    """A whole launch: its declared arguments, and the nodes in start order (the core is
+    started first wherever it is listed)."""
 
     model_config = ConfigDict(extra="forbid", frozen=True)
 
+    arguments: dict[Annotated[str, Field(pattern=_ARGUMENT_PATTERN)], LaunchArgument] = Field(
+        default_factory=dict, description="launch arguments, `name:=value` on the command line"
+    )
     nodes: tuple[NodeSpec, ...]
+
+    @field_validator("arguments")
+    @classmethod
+    def _not_an_option(cls, value: dict[str, LaunchArgument]) -> dict[str, LaunchArgument]:
+        for name in value:
+            if name in PLACEHOLDERS:
+                raise PydanticCustomError(
+                    "reserved", f"{name!r} is a launch option (--{name.replace('_', '-')}); choose another name"
+                )
+        return value
 
     @model_validator(mode="after")
     def _check_nodes(self) -> LaunchSpec:
@@ -165,6 +188,22 @@ class LaunchSpec(BaseModel):
     def names(self) -> tuple[str, ...]:
         """The node names in the order listed."""
         return tuple(node.name for node in self.nodes)
+
+    def with_arguments(self, given: Mapping[str, str]) -> LaunchSpec:
+        """This launch with its arguments' ``{name}`` filled in: ``given`` (the command line's
+        ``name:=value``), else the defaults. Raises ``LaunchError`` for an undeclared name or a
+        required argument not given."""
+        values = fill_arguments(self.arguments, given)
+        nodes = tuple(
+            node.model_copy(
+                update={
+                    "args": tuple(substitute(arg, values) for arg in node.args),
+                    "env": {key: substitute(text, values) for key, text in node.env.items()},
+                }
+            )
+            for node in self.nodes
+        )
+        return self.model_copy(update={"nodes": nodes})
 
     def uses(self, placeholder: str) -> bool:
         """Whether any node's arguments or environment use ``{placeholder}``."""
@@ -207,8 +246,11 @@ def find_launch_file(name_or_path: str | Path | None) -> Path:
     return path
 
 
-def load_launch_file(path: str | Path) -> LaunchSpec:
+def load_launch_file(path: str | Path, arguments: Mapping[str, str] | None = None) -> LaunchSpec:
     """Read and check a launch file; relative ``run`` paths are taken from the file's folder.
+    With ``arguments`` (the command line's ``name:=value``; ``{}`` for none), the declared
+    arguments are filled in (:meth:`LaunchSpec.with_arguments`); with None they are left as
+    placeholders (``--show-args`` reads ``spec.arguments``).
 
     Raises ``LaunchFileError`` with one line naming the file and the problem.
 
@@ -235,10 +277,17 @@ def load_launch_file(path: str | Path) -> LaunchSpec:
         raise LaunchFileError(
             path, f"expected a mapping with a `nodes:` list at the top, got a {_kind(data)}"
         )
+    declared = data.get("arguments")
+    context = {"arguments": tuple(declared) if isinstance(declared, dict) else ()}
     try:
-        spec = LaunchSpec.model_validate(data)
+        spec = LaunchSpec.model_validate(data, context=context)
     except ValidationError as error:
         raise LaunchFileError(path, _validation_problem(error)) from None
+    if arguments is not None:
+        try:
+            spec = spec.with_arguments(arguments)
+        except LaunchError as error:
+            raise LaunchFileError(path, str(error)) from None
     return _resolve_paths(spec, path)
 
 
@@ -281,7 +330,8 @@ def _one_error(error: ErrorDetails) -> str:
     kind = error["type"]
     value = error.get("input")
     if kind == "extra_forbidden":
-        model = LaunchSpec if len(error["loc"]) == 1 else NodeSpec
+        models: dict[object, type[BaseModel]] = {"nodes": NodeSpec, "arguments": LaunchArgument}
+        model = LaunchSpec if len(error["loc"]) == 1 else models[error["loc"][0]]
         message = f"unknown field (allowed: {', '.join(model.model_fields)})"
     elif kind == "missing":
         message = "missing (required)"

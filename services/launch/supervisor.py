@@ -34,6 +34,7 @@ from services.launch.spec import LaunchSpec
 from services.runtime.http_client import HttpClient, HttpError
 from services.runtime.ports import port_is_free
 from services.runtime.rosparam import RosParamClient, RosParamError
+from shared_models.skydeck_launch import KillNodeResponse
 
 if TYPE_CHECKING:
     from services.runtime.node import Node
@@ -437,32 +438,46 @@ class Supervisor:
 
     # -- killing on request -------------------------------------------------------------------
 
-    async def kill(self, node: str) -> tuple[bool, str]:
-        """Stop the child running graph node ``node`` for good (``skydeck node kill``):
-        ``(True, what was done)``, or ``(False, why not)``."""
-        child = await self._child_of_node(node)
+    async def kill(self, node: str) -> KillNodeResponse:
+        """Stop the child running graph node ``node`` for good (``skydeck node kill``); the
+        answer's ``reason`` says what was done or why not (``KillNodeResponse``'s constants)."""
+        child, in_graph = await self._child_of_node(node)
+
+        def refuse(reason: str, message: str) -> KillNodeResponse:
+            return KillNodeResponse(success=False, reason=reason, message=message)
+
+        if child is None and not in_graph:
+            return refuse(KillNodeResponse.UNKNOWN_NODE, f"unknown node {node}: see `skydeck node list`")
         if child is None:
-            return False, f"{node} was not started by this launch: stop it where it was started"
+            return refuse(KillNodeResponse.NOT_LAUNCHED, f"{node} was not started by this launch: stop it where it was started")
         if child.plan.is_core:
-            return False, "the core is not killed by `node kill`: stop the whole launch with Ctrl-C"
+            return refuse(KillNodeResponse.PROTECTED, f"{node} is the core, which `node kill` leaves: stop the whole launch with Ctrl-C")
         if not child.running or child.pid is None:
-            return False, f"{node} is not running ({child.state.value})"
+            return refuse(KillNodeResponse.NOT_RUNNING, f"{node} is not running ({child.state.value})")
         pid = child.pid
         child.kill_requested = True
         await self._terminate(child)
-        return True, f"killed {node} (launch node {child.plan.name}, pid {pid}); not respawned"
+        return KillNodeResponse(
+            success=True,
+            reason=KillNodeResponse.KILLED,
+            message=f"killed {node} (launch node {child.plan.name}, pid {pid}); not respawned",
+        )
 
-    async def _child_of_node(self, node: str) -> _Child | None:
-        """The child whose process registered ``node`` (matched by pid), else one named so."""
+    async def _child_of_node(self, node: str) -> tuple[_Child | None, bool]:
+        """The child whose process registered ``node`` (matched by pid), else one named so; and
+        whether the graph has ``node`` (if the core could be asked, else assumed)."""
+        in_graph = True
         if self._http is not None:
             with contextlib.suppress(HttpError, ValueError):
                 reply = await self._http.get(f"{self.core_url}/api/nodes{node}", timeout_s=2.0)
+                in_graph = reply.status != 404
                 if reply.status == 200:
                     pid = reply.json().get("pid")
                     for child in self._children.values():
                         if child.pid == pid and child.running:
-                            return child
-        return self._children.get(node.lstrip("/"))
+                            return child, True
+        named = self._children.get(node.lstrip("/"))
+        return named, in_graph or named is not None
 
     async def _start_control(self) -> None:
         from services.launch.control import LaunchControl  # the node SDK: only when asked for

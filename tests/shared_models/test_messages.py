@@ -78,7 +78,7 @@ ROS_FIELDS: dict[str, list[str]] = {
     "ros_workshop/srv/FlyCommand_Request": ["x", "y"],
     "ros_workshop/srv/FlyCommand_Response": ["success", "message"],
     "skydeck_launch/srv/KillNode_Request": ["node"],
-    "skydeck_launch/srv/KillNode_Response": ["success", "message"],
+    "skydeck_launch/srv/KillNode_Response": ["success", "message", "reason"],
     "ros_workshop/msg/AiStatus": [
         "header",
         "state",

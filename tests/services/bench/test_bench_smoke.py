@@ -55,6 +55,15 @@ def test_quick_run_of_two_families_writes_the_json_and_the_table(tmp_path: Path)
     assert list(tmp_path.iterdir()) == [tmp_path / "bench.json"]
 
 
+@pytest.mark.slow
+@pytest.mark.timeout(300)
+def test_plots_are_written_where_asked(tmp_path: Path) -> None:
+    plots = tmp_path / "plots"
+    done, document = _bench(tmp_path, "--only", "topic_latency_p50", "--plots", str(plots), timeout_s=280)
+    assert document["run"]["plots"] == [str(plots / "bench_latency.png")]
+    assert (plots / "bench_latency.png").stat().st_size > 0 and f"plot written to {plots}" in done.stderr
+
+
 def test_unknown_only_name_is_a_one_line_error(tmp_path: Path) -> None:
     done = subprocess.run(
         [sys.executable, "-m", "services.cli", "bench", "--quick", "--only", "warp_speed"],

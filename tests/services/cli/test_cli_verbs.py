@@ -7,6 +7,7 @@ import json
 import shutil
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 import yaml
@@ -16,12 +17,13 @@ from shared_models.geometry_msgs import Point, PointStamped
 from shared_models.sensor_msgs import LaserScan
 from shared_models.std_msgs import Header, String
 from shared_models.std_srvs import SetBool, SetBoolResponse, Trigger, TriggerResponse
-from tests.conftest import free_port
+from tests.conftest import free_port, wait_until
 from tests.services.cli.test_cli import skydeck
 
 
 class Stamped(Node):
-    """Stamped points at 50 Hz, a scan, a string, and two services of different types."""
+    """Stamped points at 50 Hz, a scan, a string, a subscriber, and services of different types
+    (one that never answers)."""
 
     def __init__(self, settings) -> None:
         super().__init__("stamped", settings=settings)
@@ -31,6 +33,13 @@ class Stamped(Node):
         self.create_timer(0.02, self.tick)
         self.create_service(Trigger, "/stamped/ping", lambda request: TriggerResponse(success=True))
         self.create_service(SetBool, "/stamped/enable", lambda request: SetBoolResponse(success=True))
+        self.create_service(Trigger, "/stamped/stall", self.stall)
+        self.heard: list[String] = []
+        self.create_subscription(String, "/heard", self.heard.append, 10)
+
+    async def stall(self, request: Trigger.Request) -> TriggerResponse:
+        await asyncio.Event().wait()  # never answers: the caller's --timeout ends the call
+        return TriggerResponse()
 
     def tick(self) -> None:
         header = Header(stamp=self.get_clock().now().to_msg(), frame_id="odom")
@@ -73,6 +82,65 @@ async def test_echo_field_csv_no_arr_and_qos_depth(core, start_node) -> None:
     assert status == 2 and "positive integer" in err
 
 
+async def test_echo_rate_and_timeout(core, start_node) -> None:
+    await start_node(Stamped)
+    status, out, _ = await skydeck(core.url, "topic", "echo", "/stamped", "--rate", "5", "-n", "3", "--json")
+    seqs = [json.loads(line)["header"]["seq"] for line in out.splitlines() if line.startswith("{")]
+    # At most 5 a second of a 50 Hz topic, the newest winning: messages are skipped (without
+    # --rate the stream's queue gives every one, seq by seq).
+    assert status == 0 and len(seqs) == 3 and seqs[-1] - seqs[0] > 2, seqs
+    status, out, err = await skydeck(core.url, "topic", "echo", "/silent", "--timeout", "0.5")
+    assert status == 1 and err == "skydeck: error: no message on /silent within 0.5 s\n"
+    assert "WARNING: topic [/silent] does not appear to be published yet" in out
+
+
+async def test_pub_times_at_a_rate(core, start_node) -> None:
+    stamped = await start_node(Stamped)
+    status, out, err = await skydeck(core.url, "topic", "pub", "/heard", "std_msgs/msg/String", "{data: hi}", "-r", "20", "-t", "3")
+    # It exits (at 20 Hz without -t it would publish until Ctrl-C); the subscriber links to the
+    # new publication while it runs, so it hears some of the three, the last one latched.
+    assert status == 0 and "publishing #1: String(" in out, err
+    await wait_until(lambda: bool(stamped.heard), what="the published strings")
+    assert {message.data for message in stamped.heard} == {"hi"}
+
+
+async def test_service_call_timeout_and_interface_list_of_messages(core, start_node) -> None:
+    await start_node(Stamped)
+    status, _, err = await skydeck(core.url, "service", "call", "/stamped/stall", "--timeout", "0.5")
+    assert status == 1 and err == "skydeck: error: no answer from /stamped/stall within 0.5 s (--timeout to wait longer)\n"
+    status, out, _ = await skydeck(core.url, "interface", "list", "--only-msgs")
+    names = out.splitlines()
+    assert status == 0 and "geometry_msgs/msg/Point" in names and not any("/srv/" in name for name in names)
+    status, out, _ = await skydeck(core.url, "interface", "list", "-m")
+    assert out.splitlines() == names
+
+
+@pytest.mark.parametrize(
+    ("args", "error"),
+    [
+        (["topic", "info", "/nope"], "unknown topic /nope: see `skydeck topic list`"),
+        (["topic", "pub", "--once", "/stamped", "std_msgs/msg/String", "{data: x}"],
+         "/stamped is geometry_msgs/msg/PointStamped, not std_msgs/msg/String"),
+        (["topic", "pub", "--once", "/heard", "std_srvs/srv/Trigger"], "std_srvs/srv/Trigger is a service type: use `skydeck service call`"),
+        (["topic", "hz", "/bad//name"], "invalid"),
+        (["service", "info", "/nope"], "unknown service /nope: see `skydeck service list`"),
+        (["service", "call", "/stamped/enable", "{data: maybe}"], "data"),
+        (["node", "kill", "/nobody"], "unknown node /nobody: see `skydeck node list`"),
+        (["node", "info", "bad name"], "'bad name'"),
+        (["interface", "proto", "nope/msg/Nothing"], "unknown interface"),
+        (["launch", "--show-args", "no_such_launch"], "no such launch file"),
+        (["completion", "fish"], "invalid choice: 'fish'"),
+        (["bench", "--out", "pyproject.toml/bench/results.json"], "cannot write pyproject.toml/bench/results.json: "),
+    ],
+)  # fmt: skip
+async def test_bad_input_is_one_error_line_and_a_non_zero_status(core, start_node, args, error) -> None:
+    await start_node(Stamped)
+    status, _, err = await skydeck(core.url, *args)
+    errors = [line for line in err.splitlines() if "error:" in line]
+    assert status != 0 and len(errors) == 1 and error in errors[0], err
+    assert all(line == errors[0] or line.startswith(("usage:", " ")) for line in err.splitlines()), err  # argparse's usage
+
+
 async def test_hz_window_bw_and_delay(core, start_node) -> None:
     await start_node(Stamped)
     status, out, _ = await skydeck(core.url, "topic", "hz", "/stamped", "--window", "5", "-n", "2")
@@ -113,7 +181,7 @@ async def test_service_type_and_find(core, start_node) -> None:
     status, out, _ = await skydeck(core.url, "service", "type", "/stamped/enable")
     assert out == "std_srvs/srv/SetBool\n"
     status, out, _ = await skydeck(core.url, "service", "find", "std_srvs/srv/Trigger")
-    assert status == 0 and out.splitlines() == ["/stamped/ping"]
+    assert status == 0 and out.splitlines() == ["/stamped/ping", "/stamped/stall"]
     status, _, err = await skydeck(core.url, "service", "find", "std_msgs/msg/String")
     assert status == 1 and "topic find" in err
     status, _, err = await skydeck(core.url, "service", "type", "/stamped/nope")
@@ -185,8 +253,13 @@ def _bash_complete(core_url: str, line: str) -> list[str]:
     return [word for word in result.stdout.splitlines() if word]
 
 
-async def test_bash_completes_verbs_flags_live_names_types_and_files(core, start_node) -> None:
+LAUNCH_WITH_ARGUMENTS = "arguments:\n  rate: {default: '1'}\n  world: {}\nnodes: [{name: core, run: core, port_offset: 0}]\n"
+
+
+async def test_bash_completes_verbs_flags_live_names_types_and_files(core, start_node, tmp_path) -> None:
     await start_node(Stamped)
+    launch_file = tmp_path / "my_launch.yaml"
+    launch_file.write_text(LAUNCH_WITH_ARGUMENTS)
 
     def complete(line: str) -> list[str]:
         return _bash_complete(core.url, line)
@@ -202,23 +275,42 @@ async def test_bash_completes_verbs_flags_live_names_types_and_files(core, start
     assert await asyncio.to_thread(complete, "skydeck bag info test_f") == ["test_files.py"]  # a path
     assert await asyncio.to_thread(complete, "skydeck bag record -o test_r") == ["test_record_play.py"]
     assert await asyncio.to_thread(complete, "skydeck run con") == ["control"]
+    assert await asyncio.to_thread(complete, f"skydeck launch {launch_file} ") == ["rate:=", "world:="]
+    assert await asyncio.to_thread(complete, f"skydeck launch {launch_file} --speed 2 rate:=3 w") == ["world:="]
 
 
-@pytest.mark.skipif(shutil.which("zsh") is None, reason="zsh is not installed")
-def test_the_zsh_script_is_valid_zsh_and_names_the_completer() -> None:
-    script = subprocess.run(
-        [sys.executable, "-m", "services.cli", "completion", "zsh"], capture_output=True, text=True, timeout=30, check=True
-    ).stdout
-    assert "compdef _skydeck skydeck" in script
-    checked = subprocess.run(["zsh", "-n"], input=script, capture_output=True, text=True, timeout=30)
-    assert checked.returncode == 0, checked.stderr
-    # Loaded in a real zsh (with compinit), the completer function is defined.
-    loaded = subprocess.run(
-        ["zsh", "-f", "-c", 'autoload -Uz compinit && compinit -u; eval "$SCRIPT"; whence -w _skydeck'],
-        env={"SCRIPT": script, "PATH": "/usr/bin:/bin", "HOME": "/tmp"},
-        capture_output=True, text=True, timeout=30,
-    )
-    assert "_skydeck: function" in loaded.stdout, loaded.stderr
+def _zsh_complete(core_url: str, lines: list[str], cwd: Path) -> list[tuple[list[str], str]]:
+    """Complete each of ``lines`` in a real interactive zsh (compinit, the script sourced, Tab
+    pressed in a pseudo-terminal: zsh_complete.zsh); for each, what was offered and the line after."""
+    assert shutil.which("zsh"), "zsh is a test dependency: run `make test-deps`"
+    result = subprocess.run(
+        ["zsh", "-f", str(Path(__file__).with_name("zsh_complete.zsh")), *lines],
+        env={"PATH": f"{Path(sys.executable).parent}:/usr/bin:/bin", "HOME": str(cwd), "SKYDECK_CORE_URL": core_url},
+        capture_output=True, text=True, timeout=90, cwd=cwd,
+    )  # fmt: skip
+    assert result.returncode == 0, result.stderr
+    answers = [line.split("\t") for line in result.stdout.splitlines()]
+    assert len(answers) == len(lines), result.stdout
+    return [(offered.split("|") if offered else [], buffer) for offered, buffer in answers]
+
+
+@pytest.mark.timeout(120)
+async def test_zsh_completes_verbs_flags_live_names_and_files(core, start_node, tmp_path) -> None:
+    await start_node(Stamped)
+    (tmp_path / "my_launch.yaml").write_text(LAUNCH_WITH_ARGUMENTS)
+    lines = {
+        "skydeck to": (["topic"], "skydeck topic "),
+        "skydeck topic echo --f": (["--field"], "skydeck topic echo --field "),
+        "skydeck topic echo /st": (["/stamped"], "skydeck topic echo /stamped "),
+        "skydeck service call /stamped/p": (["/stamped/ping"], "skydeck service call /stamped/ping "),
+        "skydeck node info /sta": (["/stamped"], "skydeck node info /stamped "),
+        "skydeck launch my_l": (["my_launch.yaml"], "skydeck launch my_launch.yaml "),  # a path, from _files
+        "skydeck launch my_launch.yaml rate:=2 ": (["world:="], "skydeck launch my_launch.yaml rate:=2 world:="),  # no space
+    }
+    answers = await asyncio.to_thread(_zsh_complete, core.url, [*lines, "skydeck topic "], tmp_path)
+    assert dict(zip(lines, answers[:-1], strict=True)) == lines
+    offered, buffer = answers[-1]
+    assert {"echo", "hz", "pub", "type"} <= set(offered) and buffer == "skydeck topic "  # several: listed
 
 
 async def test_topic_list_verbose_counts_publishers_and_subscribers(core, start_node) -> None:

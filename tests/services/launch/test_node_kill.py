@@ -1,4 +1,5 @@
-"""`skydeck node kill` asks the launch, which stops the node for good: a real launch, real nodes."""
+"""`skydeck node kill` asks the launch, which stops the node for good, or says why not in a
+machine-readable reason: a real launch, real nodes."""
 
 from __future__ import annotations
 
@@ -12,6 +13,8 @@ import httpx
 import pytest
 
 from services.launch.background import BackgroundProcess
+from services.launch.control import KILL_SERVICE
+from shared_models.skydeck_launch import KillNodeResponse
 from tests.conftest import free_port_block
 from tests.services.cli.test_cli import skydeck
 
@@ -60,6 +63,40 @@ async def test_a_killed_node_is_not_respawned_while_a_crashed_one_is(tmp_path: P
         assert "/perception" not in await graph_nodes(core_url)
         status, _, err = await skydeck(core_url, "node", "kill", "/skydeck_launch")
         assert status == 1 and "part of Skydeck itself" in err
+
+        # Each refusal carries its reason, for programs; the message is for people.
+        async def ask(node: str) -> KillNodeResponse:
+            async with httpx.AsyncClient() as http:
+                reply = await http.post(core_url + KILL_SERVICE, json={"node": node}, timeout=15)
+            assert reply.status_code == 200, reply.text
+            return KillNodeResponse.model_validate(reply.json())
+
+        for node, reason in (
+            ("/nobody", KillNodeResponse.UNKNOWN_NODE),
+            ("/skydeck_core", KillNodeResponse.PROTECTED),
+            ("/perception", KillNodeResponse.NOT_RUNNING),  # killed above: the launch knows it, stopped
+        ):
+            answer = await ask(node)
+            assert (answer.success, answer.reason) == (False, reason) and node.strip("/") in answer.message, answer
+
+        # A node this launch did not start: the launch says so (NOT_LAUNCHED), and `node kill`
+        # then stops it itself, as it runs on this machine.
+        outsider = BackgroundProcess(
+            [sys.executable, "-m", "services.cli", "run", "examples/send_message.py", "--core-url", core_url,
+             "--ros-args", "-r", "__node:=outsider"],
+            name="outsider", env={**os.environ, "PYTHONUNBUFFERED": "1"},
+        )  # fmt: skip
+        try:
+            async with asyncio.timeout(30):
+                while "/outsider" not in await graph_nodes(core_url):
+                    await asyncio.sleep(0.1)
+            answer = await ask("/outsider")
+            assert (answer.success, answer.reason) == (False, KillNodeResponse.NOT_LAUNCHED), answer
+            status, out, err = await skydeck(core_url, "node", "kill", "/outsider")
+            assert status == 0 and "killed /outsider (pid" in out and "with SIGTERM" in out, err
+            assert await asyncio.to_thread(outsider.popen.wait, 15) == 0
+        finally:
+            outsider.stop()
     finally:
         assert await asyncio.to_thread(launch.stop, signal.SIGINT, 30)
     assert launch.returncode == 0 and not any("Traceback" in line for line in launch.lines), launch.tail()

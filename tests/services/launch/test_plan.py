@@ -152,6 +152,7 @@ def test_public_api() -> None:
             "DEFAULT_BASE_PORT",
             "PLACEHOLDERS",
             "CommandFor",
+            "LaunchArgument",
             "LaunchError",
             "LaunchFileError",
             "LaunchOptions",
@@ -169,11 +170,13 @@ def test_public_api() -> None:
             "default_launch_file",
             "find_launch_file",
             "is_roslaunch_file",
+            "launch_arguments",
             "load_launch_file",
             "load_roslaunch_file",
             "plan_launch",
             "run_launch",
             "shipped_launch_files",
+            "show_arguments",
         ]
     )
     for name in services.launch.__all__:

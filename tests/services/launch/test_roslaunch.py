@@ -8,12 +8,10 @@ from pathlib import Path
 import pytest
 
 from services.launch import (
-    LaunchError,
     LaunchFileError,
     RosLaunch,
     core_answers,
     load_roslaunch_file,
-    run_launch,
 )
 from services.launch.roslaunch import NODE_PORT_OFFSET
 
@@ -375,11 +373,6 @@ def test_a_node_named_core_clashes_only_with_a_core_the_launch_starts(workspace:
     assert launch.spec(start_core=False).nodes[0].name == "core"
     with pytest.raises(LaunchFileError, match="a node named /core clashes with skydeck launch's own"):
         launch.spec(start_core=True)
-
-
-def test_name_value_arguments_are_for_roslaunch_files_only(tmp_path: Path) -> None:
-    with pytest.raises(LaunchError, match="x: name:=value arguments are for roslaunch files"):
-        run_launch("workshop", launch_args={"x": "1"})
 
 
 def test_no_core_answers_on_a_free_port() -> None:

@@ -167,7 +167,7 @@ def test_unknown_field_names_its_place_and_the_allowed_fields(tmp_path: Path) ->
 
 def test_unknown_top_level_field(tmp_path: Path) -> None:
     problem = _problem(_write(tmp_path, textwrap.dedent(_GOOD) + "verbose: true\n"))
-    assert problem == "verbose: unknown field (allowed: nodes)"
+    assert problem == "verbose: unknown field (allowed: arguments, nodes)"
 
 
 def test_missing_field(tmp_path: Path) -> None:
