@@ -3,7 +3,8 @@
 Beam ``i`` points ``i`` degrees counter-clockwise from straight ahead, level, from the laser at
 LASER_HEIGHT_M above base_link. Each ray starts just outside the laser's own housing (so the
 robot never sees itself) and is cast to RANGE_MAX_M; a beam with no return, or one closer than
-RANGE_MIN_M, reads NO_RETURN (0.0), as the Neato driver reports it.
+RANGE_MIN_M, reads NO_RETURN (0.0), as the Neato driver reports it. The rays test everything
+but the floor (``SCAN_MASK``).
 """
 
 from __future__ import annotations
@@ -11,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pybullet as p
 
+from sim_server.robot.bodies import SCAN_MASK
 from sim_server.robot.limits import (
     LASER_HEIGHT_M,
     LASER_HOUSING_RADIUS_M,
@@ -52,7 +54,7 @@ class Laser:
         reach[:, 0] = x + RANGE_MAX_M * dx
         reach[:, 1] = y + RANGE_MAX_M * dy
         reach[:, 2] = LASER_HEIGHT_M
-        hits = p.rayTestBatch(start, reach, physicsClientId=self._client)
+        hits = p.rayTestBatch(start, reach, collisionFilterMask=SCAN_MASK, physicsClientId=self._client)
         # hit = (body, link, fraction, position, normal); body -1: no return.
         return [
             _START_M + hit[2] * _SPAN_M if hit[0] >= 0 and hit[2] >= _MIN_FRACTION else NO_RETURN
