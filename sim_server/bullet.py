@@ -3,23 +3,27 @@
 
 The drone's :class:`~sim_server.world.World` and the robot world's
 :class:`~sim_server.robot.world.RobotWorld` are both one; a world builds its bodies on a fresh
-simulation (:meth:`BulletWorld._fresh_simulation`) and steps it at PHYSICS_HZ.
+simulation (:meth:`BulletWorld._fresh_simulation`) and steps it at its ``PHYSICS_HZ`` (the drone world at
+the simulator's 240 Hz; the robot world, slower, at 120 Hz).
 """
 
 from __future__ import annotations
 
 from types import TracebackType
-from typing import Self
+from typing import ClassVar, Self
 
 import pybullet as p
 
-from sim_server.limits import GRAVITY_M_S2, PHYSICS_DT_S
+from sim_server.limits import GRAVITY_M_S2, PHYSICS_HZ
 
 __all__ = ["BulletWorld"]
 
 
 class BulletWorld:
     """A headless PyBullet client (``p.DIRECT``) and its clock. Not thread-safe."""
+
+    PHYSICS_HZ: ClassVar[int] = PHYSICS_HZ
+    """Physics steps per sim second in this kind of world."""
 
     def __init__(self) -> None:
         self._steps = 0
@@ -51,8 +55,8 @@ class BulletWorld:
 
     @property
     def time_s(self) -> float:
-        """Sim time: 1/240 s per physics step since the world was created."""
-        return self._steps * PHYSICS_DT_S
+        """Sim time: 1/PHYSICS_HZ s per physics step since the world was created."""
+        return self._steps * (1.0 / self.PHYSICS_HZ)
 
     @property
     def steps(self) -> int:
@@ -72,5 +76,5 @@ class BulletWorld:
         client = self._client
         p.resetSimulation(physicsClientId=client)
         p.setGravity(0.0, 0.0, -GRAVITY_M_S2, physicsClientId=client)
-        p.setTimeStep(PHYSICS_DT_S, physicsClientId=client)
+        p.setTimeStep(1.0 / self.PHYSICS_HZ, physicsClientId=client)
         return client

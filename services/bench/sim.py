@@ -24,6 +24,7 @@ import httpx
 from services.bench.processes import BenchError, Worker, free_port, wait_http, worker_env
 from services.bench.topics import CoreHolder
 from sim_server.limits import PHYSICS_HZ
+from sim_server.robot.limits import PHYSICS_HZ as ROBOT_PHYSICS_HZ
 
 __all__ = ["measure_bare", "measure_node", "measure_robot_bare", "sim_argv"]
 
@@ -61,11 +62,11 @@ def measure_robot_bare(*, steps: int, seed: int = 1) -> dict[str, float]:
     with Worker("robot-bare", "services.bench.robot_worker", "--steps", str(steps), "--seed", str(seed)) as worker:
         reading = worker.expect("RESULT", 120.0)
     return {
-        "bare_rtf": reading["bare_steps_per_s"] / PHYSICS_HZ,
-        "world_rtf": reading["world_steps_per_s"] / PHYSICS_HZ,
+        "bare_rtf": reading["bare_steps_per_s"] / ROBOT_PHYSICS_HZ,
+        "world_rtf": reading["world_steps_per_s"] / ROBOT_PHYSICS_HZ,
         "scan_ms": reading["scan_ms"],
         "bare_scan_ms": reading["bare_scan_ms"],
-        "bare_rtf_cpu": reading["bare_steps_per_cpu_s"] / PHYSICS_HZ,
+        "bare_rtf_cpu": reading["bare_steps_per_cpu_s"] / ROBOT_PHYSICS_HZ,
     }
 
 

@@ -3,6 +3,13 @@
 Built from primitive shapes on the client id given (no pybullet_data files). The Neato is one
 multibody: the body (base), two driven wheels on revolute joints and a ball caster on a fixed
 joint; only the wheels grip the floor.
+
+Each body collides only with what it can touch (collision groups and masks; a pair filtered
+out costs nothing in a step): the wheels and the caster with the floor; the Neato's body with
+the floor (never touched, but its resting contact keeps a parked robot from creeping), the
+walls, the boxes, other Neatos and the person; the person's legs (held clear of the floor by
+their constraint, on a loop away from the walls and boxes) with the Neatos. The laser's rays
+see everything but the floor (SCAN_MASK).
 """
 
 from __future__ import annotations
@@ -41,6 +48,7 @@ __all__ = [
     "BODY_CENTRE_Z_M",
     "LEFT_WHEEL",
     "RIGHT_WHEEL",
+    "SCAN_MASK",
     "WHEELS",
     "create_floor",
     "create_neato",
@@ -66,6 +74,26 @@ BODY_CENTRE_Z_M = BODY_BOTTOM_M + BODY_HEIGHT_M / 2.0
 """Height of the body's geometric centre above base_link (the floor)."""
 _PERSON_CENTRE_Z_M = LEG_HEIGHT_M / 2.0 + 0.005  # legs just clear of the floor: no friction
 
+# Collision groups (bits) and what each collides with.
+_RAY = 1
+"""The group Bullet gives ray tests (its default filter): a body is hit by rays only if its mask
+has this bit, whatever the ray's mask says."""
+_FLOOR = 2
+_ROOM = 4
+"""Walls and boxes."""
+_NEATO = 8
+"""A Neato's body, bumper and laser turret."""
+_WHEELS = 16
+"""A Neato's wheels and caster."""
+_PERSON = 32
+SCAN_MASK = _ROOM | _NEATO | _PERSON
+"""What a laser ray can hit: everything but the floor (it never reaches it, level at
+LASER_HEIGHT_M; leaving it out spares each ray a test)."""
+
+
+def _collide(client: int, body: int, link: int, group: int, mask: int) -> None:
+    p.setCollisionFilterGroupMask(body, link, group, mask | _RAY, physicsClientId=client)
+
 
 def create_floor(client: int) -> int:
     """An infinite static plane at z = 0, drawn as a tile a little larger than the room."""
@@ -78,7 +106,9 @@ def create_floor(client: int) -> int:
         rgbaColor=_FLOOR_RGBA,
         physicsClientId=client,
     )
-    return p.createMultiBody(0.0, shape, visual, physicsClientId=client)
+    floor = p.createMultiBody(0.0, shape, visual, physicsClientId=client)
+    _collide(client, floor, -1, _FLOOR, _WHEELS | _NEATO)
+    return floor
 
 
 def create_walls(client: int) -> list[int]:
@@ -102,9 +132,9 @@ def create_walls(client: int) -> list[int]:
             rgbaColor=_WALL_RGBA,
             physicsClientId=client,
         )
-        walls.append(
-            p.createMultiBody(0.0, shape, visual, (-nx * half, -ny * half, 0.0), physicsClientId=client)
-        )
+        wall = p.createMultiBody(0.0, shape, visual, (-nx * half, -ny * half, 0.0), physicsClientId=client)
+        _collide(client, wall, -1, _ROOM, _NEATO)
+        walls.append(wall)
     return walls
 
 
@@ -116,7 +146,7 @@ def create_obstacle(client: int, obstacle: Obstacle) -> int:
     visual = p.createVisualShape(
         p.GEOM_BOX, halfExtents=extents, rgbaColor=_OBSTACLE_RGBA, physicsClientId=client
     )
-    return p.createMultiBody(
+    box = p.createMultiBody(
         0.0,
         shape,
         visual,
@@ -124,6 +154,8 @@ def create_obstacle(client: int, obstacle: Obstacle) -> int:
         p.getQuaternionFromEuler((0.0, 0.0, obstacle.yaw)),
         physicsClientId=client,
     )
+    _collide(client, box, -1, _ROOM, _NEATO)
+    return box
 
 
 def create_neato(client: int, x: float, y: float, yaw: float) -> int:
@@ -195,6 +227,9 @@ def create_neato(client: int, x: float, y: float, yaw: float) -> int:
         p.changeDynamics(body, wheel, lateralFriction=WHEEL_FRICTION, physicsClientId=client)
     p.changeDynamics(body, _CASTER, lateralFriction=0.0, physicsClientId=client)
     p.changeDynamics(body, -1, lateralFriction=0.3, physicsClientId=client)
+    _collide(client, body, -1, _NEATO, _FLOOR | _ROOM | _NEATO | _PERSON)
+    for link in (LEFT_WHEEL, RIGHT_WHEEL, _CASTER):
+        _collide(client, body, link, _WHEELS, _FLOOR)
     return body
 
 
@@ -227,6 +262,7 @@ def create_person(client: int, x: float, y: float, heading: float) -> tuple[int,
         orientation,
         physicsClientId=client,
     )
+    _collide(client, body, -1, _PERSON, _NEATO)
     constraint = p.createConstraint(
         body,
         -1,

@@ -39,12 +39,13 @@ from shared_models.tf2_msgs import TFMessage
 from shared_models.visualization_msgs import Marker, MarkerArray
 from sim_server.camera import View, render_rgb
 from sim_server.commands import InvalidCommand
-from sim_server.limits import PHYSICS_DT_S
 from sim_server.robot.limits import (
     LASER_HEIGHT_M,
     MAX_OBSTACLES,
     MAX_ROBOTS,
     OBSTACLE_HEIGHT_M,
+    ODOM_EVERY_STEPS,
+    PHYSICS_DT_S,
     RANGE_MAX_M,
     RANGE_MIN_M,
     ROOM_HALF_SIZE_M,
@@ -110,7 +111,7 @@ def _build_world(sim: SimSettings) -> RobotWorld:
 class RobotSimNode(WorldNode):
     """The robot world as a node; ``world`` is its :class:`RobotWorld`."""
 
-    PUBLISH_EVERY_STEPS = 8  # 30 Hz: odom, bump, tf and clock
+    PUBLISH_EVERY_STEPS = ODOM_EVERY_STEPS  # 30 Hz: odom, bump, tf and clock
     WORLD_NAME = "robot"
 
     def __init__(self, sim: SimSettings | None = None, settings: NodeSettings | None = None) -> None:

@@ -3,14 +3,18 @@
 Beam ``i`` points ``i`` degrees counter-clockwise from straight ahead, level, from the laser at
 LASER_HEIGHT_M above base_link. Each ray starts just outside the laser's own housing (so the
 robot never sees itself) and is cast to RANGE_MAX_M; a beam with no return, or one closer than
-RANGE_MIN_M, reads NO_RETURN (0.0), as the Neato driver reports it.
+RANGE_MIN_M, reads NO_RETURN (0.0), as the Neato driver reports it. The rays test everything
+but the floor (``SCAN_MASK``).
 """
 
 from __future__ import annotations
 
+from operator import itemgetter
+
 import numpy as np
 import pybullet as p
 
+from sim_server.robot.bodies import SCAN_MASK
 from sim_server.robot.limits import (
     LASER_HEIGHT_M,
     LASER_HOUSING_RADIUS_M,
@@ -27,6 +31,8 @@ _START_M = LASER_HOUSING_RADIUS_M + 0.01
 """Where each ray starts, from the laser's centre: outside the housing."""
 _SPAN_M = RANGE_MAX_M - _START_M
 _MIN_FRACTION = (RANGE_MIN_M - _START_M) / _SPAN_M
+_BODY = itemgetter(0)
+_FRACTION = itemgetter(2)
 
 
 class Laser:
@@ -52,9 +58,11 @@ class Laser:
         reach[:, 0] = x + RANGE_MAX_M * dx
         reach[:, 1] = y + RANGE_MAX_M * dy
         reach[:, 2] = LASER_HEIGHT_M
-        hits = p.rayTestBatch(start, reach, physicsClientId=self._client)
-        # hit = (body, link, fraction, position, normal); body -1: no return.
-        return [
-            _START_M + hit[2] * _SPAN_M if hit[0] >= 0 and hit[2] >= _MIN_FRACTION else NO_RETURN
-            for hit in hits
-        ]
+        hits = p.rayTestBatch(start, reach, collisionFilterMask=SCAN_MASK, physicsClientId=self._client)
+        # hit = (body, link, fraction, position, normal); body -1: no return. Read in bulk: a
+        # Python test per beam costs a tenth of the ray batch itself.
+        bodies = np.fromiter(map(_BODY, hits), dtype=np.int64, count=SCAN_BEAMS)
+        fractions = np.fromiter(map(_FRACTION, hits), dtype=np.float64, count=SCAN_BEAMS)
+        returned = (bodies >= 0) & (fractions >= _MIN_FRACTION)
+        ranges: list[float] = np.where(returned, _START_M + fractions * _SPAN_M, NO_RETURN).tolist()
+        return ranges

@@ -14,8 +14,8 @@ from dataclasses import dataclass
 
 import pybullet as p
 
-from sim_server.limits import PHYSICS_HZ
-from sim_server.robot.limits import ODOM_EVERY_STEPS, SCAN_EVERY_STEPS
+from sim_server.robot.bodies import SCAN_MASK
+from sim_server.robot.limits import ODOM_EVERY_STEPS, PHYSICS_HZ, SCAN_EVERY_STEPS
 from sim_server.robot.world import RobotWorld, RobotWorldConfig
 
 __all__ = ["RobotSpeedReading", "measure"]
@@ -105,7 +105,8 @@ def _world_rate(seed: int, robots: int, steps: int) -> _Run:
 
 def _bare_rate(seed: int, robots: int, steps: int) -> _Run:
     """stepSimulation, and every SCAN_EVERY_STEPS steps the very rays of each robot's scan, in
-    one rayTestBatch each: the least any program simulating this scene could do."""
+    one rayTestBatch each with the laser's collision mask: the least any program simulating this
+    scene (the same bodies, collision filters and time step) could do."""
     with _settled(seed, robots) as world:
         client = world.client
         laser = world._laser  # the same ray arrays the world casts
@@ -122,7 +123,7 @@ def _bare_rate(seed: int, robots: int, steps: int) -> _Run:
             if done % SCAN_EVERY_STEPS == 0:
                 t0 = time.perf_counter()
                 for start_points, end_points in rays:
-                    ray_test(start_points, end_points, physicsClientId=client)
+                    ray_test(start_points, end_points, collisionFilterMask=SCAN_MASK, physicsClientId=client)
                 scan_s += time.perf_counter() - t0
                 scans += robots
         return clocks.run(steps, scan_s, scans)

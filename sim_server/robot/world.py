@@ -1,5 +1,5 @@
 """The robot world: Neatos, box obstacles and a walking person in a closed room, in headless
-PyBullet at 240 Hz.
+PyBullet at 120 Hz (``PHYSICS_HZ`` in ``sim_server.robot.limits``).
 
 Example::
 
@@ -7,7 +7,7 @@ Example::
 
     world = RobotWorld(RobotWorldConfig(seed=1))
     world.set_cmd_vel(0, 0.2, 0.0)        # robot 0: 0.2 m/s ahead; re-send within 0.5 s
-    world.step(240)                       # one second of sim time
+    world.step(PHYSICS_HZ)                # one second of sim time (120 steps)
     x, y, yaw = world.robot_pose(0)       # the truth; world.odometry(0) is what the wheels say
     ranges = world.scan(0)                # 360 beams, ranges[0] straight ahead
     world.close()
@@ -27,7 +27,6 @@ from dataclasses import dataclass, field
 import pybullet as p
 
 from sim_server.bullet import BulletWorld
-from sim_server.limits import PHYSICS_DT_S
 from sim_server.robot.bodies import (
     WHEELS,
     create_floor,
@@ -49,6 +48,8 @@ from sim_server.robot.limits import (
     MAX_WHEEL_FORCE_N,
     PERSON_MAX_FORCE_N,
     PERSON_SPEED,
+    PHYSICS_DT_S,
+    PHYSICS_HZ,
     ROBOT_STARTS_M,
     SOLVER_ITERATIONS,
     WHEEL_RADIUS_M,
@@ -109,6 +110,8 @@ class _Robot:
 class RobotWorld(BulletWorld):
     """A closed room with ``config.robots`` Neatos, ``config.obstacles`` boxes and a person."""
 
+    PHYSICS_HZ = PHYSICS_HZ
+
     def __init__(self, config: RobotWorldConfig | None = None) -> None:
         super().__init__()
         self.config = config or RobotWorldConfig()
@@ -156,7 +159,7 @@ class RobotWorld(BulletWorld):
     # -- stepping ------------------------------------------------------------------------------
 
     def step(self, n: int = 1) -> None:
-        """Advance the world by ``n`` physics steps of 1/240 s."""
+        """Advance the world by ``n`` physics steps of 1/PHYSICS_HZ s."""
         self._check_open()
         if n < 0:
             raise ValueError(f"n={n} must be >= 0")

@@ -9,7 +9,6 @@ from collections.abc import Callable, Iterator
 import pytest
 
 from sim_server.commands import InvalidCommand
-from sim_server.limits import PHYSICS_HZ
 from sim_server.robot.limits import (
     CMD_VEL_TIMEOUT_S,
     LEG_RADIUS_M,
@@ -19,6 +18,7 @@ from sim_server.robot.limits import (
     MAX_ROBOTS,
     NO_RETURN,
     PERSON_SPEED,
+    PHYSICS_HZ,
     RANGE_MAX_M,
     ROBOT_RADIUS_M,
     ROBOT_STARTS_M,
@@ -28,7 +28,7 @@ from sim_server.robot.limits import (
 )
 from sim_server.robot.world import RobotWorld, RobotWorldConfig, bumper_part
 
-COMMAND_EVERY_STEPS = 8  # a 30 Hz command stream
+COMMAND_EVERY_STEPS = PHYSICS_HZ // 30  # a 30 Hz command stream
 
 
 @pytest.fixture
