@@ -17,7 +17,7 @@ import ormsgpack
 
 from services.cli.arguments import positive_int, ros_name
 from services.cli.errors import CliError
-from services.cli.streams import packed_frames, warn_if_unpublished
+from services.cli.streams import frames, warn_if_unpublished
 
 __all__ = ["add_stats_parsers"]
 
@@ -56,7 +56,7 @@ def _run(
     async def run() -> None:
         async def read() -> None:
             # Its own task: a report's deadline must never cancel a read (that ends the stream).
-            async for frame in packed_frames(name, queue=10_000):
+            async for frame in frames(name, queue=10_000, packed=True):
                 on_frame(frame, time.time())
 
         async def read_all() -> None:
@@ -156,7 +156,7 @@ def _delay(args: argparse.Namespace) -> int:
         print(f"\tmin: {min(delays):.3f}s max: {max(delays):.3f}s std dev: {std:.5f}s window: {len(delays)}", flush=True)
 
     async def follow_clock() -> None:
-        async for frame in packed_frames("/clock"):
+        async for frame in frames("/clock", packed=True):
             clock = ormsgpack.unpackb(frame)
             sim_now[:] = [clock.get("sec", 0) + clock.get("nanosec", 0) * 1e-9]
 
