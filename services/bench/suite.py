@@ -134,7 +134,7 @@ class Suite:
             rate = {key: median_of(values, "rate") for key, values in readings.items()}
             sky = Result(
                 "topic_throughput", rate["skydeck"], "msg/s", BARE_WS, rate["websockets"],
-                target=f">= 0.8x bare and >= {10 * ROSBRIDGE_MSGS_S:,.0f} msg/s (10x rosbridge)",
+                target=f">= 1.0x bare and >= {10 * ROSBRIDGE_MSGS_S:,.0f} msg/s (10x rosbridge)",
                 samples=[r["rate"] for r in readings["skydeck"]],
                 detail={
                     "publisher_rate": median_of(readings["skydeck"], "publisher_rate"),
@@ -143,7 +143,7 @@ class Suite:
                     "reference_samples": [r["rate"] for r in readings["websockets"]],
                 },
             )  # fmt: skip
-            sky.met = sky.ratio is not None and sky.ratio >= 0.8 and rate["skydeck"] >= 10 * ROSBRIDGE_MSGS_S
+            sky.met = sky.ratio is not None and sky.ratio >= 1.0 and rate["skydeck"] >= 10 * ROSBRIDGE_MSGS_S
             zenoh = Result(
                 "zenoh_throughput", rate["zenoh"], "msg/s", BARE_WS, rate["websockets"],
                 target="peer, for comparison", samples=[r["rate"] for r in readings["zenoh"]],
@@ -295,10 +295,10 @@ class Suite:
                                     "reference_p99_us": median_of(readings["fastapi"], "p99_us")})  # fmt: skip
             direct.met = _ratio_at_most(direct, 1.2)
             gateway = Result("gateway_service_rtt_p50", p50["gateway"], "us", "direct call (service_rtt_p50)",
-                             p50["skydeck"], target="<= 2x direct",
+                             p50["skydeck"], target="<= 1.3x direct",
                              samples=[r["p50_us"] for r in readings["gateway"]],
                              detail={"p99_us": median_of(readings["gateway"], "p99_us")})  # fmt: skip
-            gateway.met = _ratio_at_most(gateway, 2.0)
+            gateway.met = _ratio_at_most(gateway, 1.3)
             return [direct, gateway]
 
         return Family("services", trials, self.settings.service_repetitions, summarise,

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import AsyncIterator
+from typing import Literal, overload
 
 from websockets.asyncio.client import connect
 from websockets.exceptions import InvalidHandshake, InvalidStatus
@@ -14,13 +15,32 @@ from shared_models.close_codes import Close
 __all__ = ["frames", "warn_if_unpublished"]
 
 
-async def frames(name: str, *, rate: float | None = None, queue: int | None = None) -> AsyncIterator[str]:
-    """Every frame of ``name`` (as text) through the core; CliError if it cannot be read."""
-    url = ws_url(name, rate=rate, queue=queue)
+@overload
+def frames(
+    name: str, *, rate: float | None = None, queue: int | None = None, packed: Literal[False] = False
+) -> AsyncIterator[str]: ...
+@overload
+def frames(name: str, *, rate: float | None = None, queue: int | None = None, packed: Literal[True]) -> AsyncIterator[bytes]: ...
+
+
+async def frames(
+    name: str, *, rate: float | None = None, queue: int | None = None, packed: bool = False
+) -> AsyncIterator[str | bytes]:
+    """Every frame of ``name`` through the core, as JSON text, or as msgpack with ``packed``
+    (``?encoding=msgpack``: for verbs that print no message, cheaper for the core to send and
+    for the CLI to read, an image's bytes not base64); CliError if it cannot be read.
+
+    One generator, not one wrapping another: an async generator left inside another when the
+    reader stops early is closed by the event loop's finaliser, which then fails loudly.
+    """
+    url = ws_url(name, rate=rate, queue=queue, encoding="msgpack" if packed else None)
     try:
         async with connect(url, additional_headers=auth_headers(), compression=None, max_size=None) as websocket:
             async for frame in websocket:
-                yield frame if isinstance(frame, str) else frame.decode()
+                if packed:
+                    yield frame if isinstance(frame, bytes) else frame.encode()
+                else:
+                    yield frame if isinstance(frame, str) else frame.decode()
             if websocket.close_code not in (Close.NORMAL, Close.GOING_AWAY, None):
                 raise CliError(f"{name}: the core closed the stream ({websocket.close_code}): {websocket.close_reason}")
     except (OSError, InvalidHandshake, TimeoutError) as error:

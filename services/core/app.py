@@ -21,6 +21,7 @@ from fastapi.openapi.docs import get_swagger_ui_html
 from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, RedirectResponse, Response
 from fastapi.staticfiles import StaticFiles
 from starlette.routing import Route, WebSocketRoute
+from starlette.types import Receive, Scope, Send
 
 from services.core.api import router as api_router
 from services.core.core_node import CORE_NODE, CORE_NODE_PATH, CoreNode
@@ -50,12 +51,26 @@ from services.runtime.origin import SameOriginOnly
 from services.runtime.settings import reachable_host
 from services.runtime.wire import Close
 
-__all__ = ["create_app"]
+__all__ = ["CoreApp", "create_app"]
 
 _WEB_UI = Path(__file__).resolve().parents[2] / "web_ui"
 _STATIC_DIR = _WEB_UI / "static"
 _SWAGGER_DIR = _WEB_UI / "vendor" / "node_modules" / "swagger-ui-dist"
 _THREE_DIR = _WEB_UI / "vendor" / "node_modules" / "three"  # the 3D view's library (ES modules)
+
+
+class CoreApp(FastAPI):
+    """The core's FastAPI app, with service calls through the gateway taken before its layers
+    (:class:`~services.core.gateway.ServiceCallsFirst`)."""
+
+    service_calls_first: ServiceCallsFirst | None = None
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        first = self.service_calls_first
+        if first is not None and first.takes(scope):
+            await first(scope, receive, send)
+            return
+        await super().__call__(scope, receive, send)
 
 
 def create_app(
@@ -99,7 +114,7 @@ def create_app(
             core_node.stop()
             await http.aclose()
 
-    app = FastAPI(
+    app = CoreApp(
         title="Skydeck",
         description=(
             "Every command of the running system: each service of each live node is a POST at its "
@@ -115,8 +130,9 @@ def create_app(
     app.state.settings = settings
     app.state.core_node = core_node
     app.state.rosparam = ParameterTree()  # ROS 1's parameter server: the core's, as roscore's
-    # Innermost first: service calls skip routing, inside the size and origin checks.
-    app.add_middleware(ServiceCallsFirst, registry=registry, gateway=lambda: getattr(app.state, "gateway", None))
+    app.service_calls_first = ServiceCallsFirst(
+        registry, lambda: getattr(app.state, "gateway", None), max_bytes=settings.max_message_bytes
+    )
     app.add_middleware(BodySizeLimit, max_bytes=settings.max_message_bytes)
     app.add_middleware(SameOriginOnly)
     install_error_handlers(app)

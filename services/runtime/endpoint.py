@@ -99,8 +99,10 @@ class TopicEndpoint:
             outbox.push(frames.get(outbox.encoding))
         for tap in self.taps:
             tap.push(frames.get(tap.encoding))
-        for subscription, msg in self._parsed_for(frames):
-            subscription.enqueue(msg)
+        msg = self._parsed(frames)
+        if msg is not None:
+            for subscription in self.subscriptions:
+                subscription.enqueue(msg)
 
     def receive_link_frame(self, frame: Frame) -> None:
         """A frame from a remote publisher, as received: parsed only if someone here needs it."""
@@ -108,20 +110,21 @@ class TopicEndpoint:
         self.latest = frames
         for tap in self.taps:
             tap.push(frames.get(tap.encoding))
-        for subscription, msg in self._parsed_for(frames):
-            subscription.receive(msg)
+        msg = self._parsed(frames)
+        if msg is not None:
+            for subscription in self.subscriptions:
+                subscription.receive(msg)
 
-    def _parsed_for(self, frames: Frames) -> list[tuple[Subscription, Message]]:
-        """Each local subscription with the message, parsed once; none if nobody here needs it
-        or it is not of the topic's type (then it is dropped, with a warning)."""
+    def _parsed(self, frames: Frames) -> Message | None:
+        """The message for the local subscriptions, parsed once; None if nobody here needs it or
+        it is not of the topic's type (then it is dropped, with a warning)."""
         if not self.subscriptions or self.msg_type is None:
-            return []
+            return None
         try:
-            msg = frames.message()
+            return frames.message()
         except FrameRejected as error:
             logger.warning("dropped a message on %s: %s", self.name, error.reason)
-            return []
-        return [(subscription, msg) for subscription in self.subscriptions]
+            return None
 
     def frames_of(self, msg: Message, frame: Frame) -> Frames:
         """The frames of ``msg``, parsed from ``frame``: the frame itself if it named every field,

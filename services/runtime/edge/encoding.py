@@ -81,8 +81,9 @@ def decode(frame: str | bytes, msg_type: type[Message], type_name: str) -> Messa
     """Validate one frame (JSON text or msgpack bytes) into ``msg_type``, or FrameRejected(1007)."""
     try:
         if isinstance(frame, str):
-            return msg_type.model_validate_json(frame)
-        return msg_type.model_validate(ormsgpack.unpackb(frame))
+            return msg_type.__pydantic_validator__.validate_json(frame)  # type: ignore[no-any-return]
+        # The validator itself: model_validate's keyword handling costs a tenth of a pose's decode.
+        return msg_type.__pydantic_validator__.validate_python(ormsgpack.unpackb(frame))  # type: ignore[no-any-return]
     except ValidationError as error:
         raise FrameRejected(Close.INVALID_FRAME, describe_validation_error(type_name, error)) from None
     except (ormsgpack.MsgpackDecodeError, ValueError, TypeError) as error:

@@ -179,6 +179,8 @@ def test_a_short_soak_samples_every_process_under_load(tmp_path: Path) -> None:
     assert "Traceback" not in done.stderr, done.stderr[-2000:]
     rows = {row["name"]: row for row in json.loads(out.read_text())["results"]}
     assert {"soak_rss_sim", "soak_rss_control", "soak_rss_ai", "soak_rss_skydeck_core"} <= set(rows)
+    slope = rows.pop("soak_rss_slope")
+    assert slope["unit"] == "MiB/min" and "soak_rss" + slope["detail"]["process"].replace("/", "_") in rows
     assert all(row["value"] > 10 and row["reference"] == "after warm-up" for row in rows.values())
     counters = json.loads(out.read_text())["run"]["counters"]
     assert counters["frames"] > 1000 and counters["stalled_readers"] >= 1

@@ -14,7 +14,7 @@ import yaml
 
 from services.runtime import Node
 from shared_models.geometry_msgs import Point, PointStamped
-from shared_models.sensor_msgs import LaserScan
+from shared_models.sensor_msgs import CompressedImage, LaserScan
 from shared_models.std_msgs import Header, String
 from shared_models.std_srvs import SetBool, SetBoolResponse, Trigger, TriggerResponse
 from tests.conftest import free_port, wait_until
@@ -152,6 +152,28 @@ async def test_hz_window_bw_and_delay(core, start_node) -> None:
     assert status == 0 and 0 <= delay < 1.0 and "window: 10" in out  # wall-clock stamps, one machine
     status, _, err = await skydeck(core.url, "topic", "delay", "/text", "-n", "1")
     assert status == 1 and "/text has no header.stamp" in err and err.count("\n") == 1
+
+
+class Jpegs(Node):
+    """A 3,000-byte CompressedImage at 50 Hz: 3.1 KB in msgpack, 4.1 KB as JSON (base64)."""
+
+    def __init__(self, settings) -> None:
+        super().__init__("jpegs", settings=settings)
+        self.images = self.create_publisher(CompressedImage, "/jpegs", 10)
+        self.create_timer(0.02, self.tick)
+
+    def tick(self) -> None:
+        header = Header(stamp=self.get_clock().now().to_msg(), frame_id="camera")
+        self.images.publish(CompressedImage(header=header, format="jpeg", data=bytes(3000)))
+
+
+async def test_hz_bw_and_delay_read_msgpack(core, start_node) -> None:
+    # bw counts the frames it reads: msgpack's size (bytes as bytes), not the JSON's base64.
+    await start_node(Jpegs)
+    status, out, _ = await skydeck(core.url, "topic", "bw", "/jpegs", "-w", "10", "-n", "1")
+    assert status == 0 and "Message size mean: 3.08 KB" in out, out
+    status, out, _ = await skydeck(core.url, "topic", "delay", "/jpegs", "-w", "10", "-n", "1")
+    assert status == 0 and "average delay:" in out, out
 
 
 async def test_delay_on_sim_time_compares_with_clock(core, start_node) -> None:

@@ -55,10 +55,14 @@ async def test_bad_body_gets_422_with_fastapi_detail(core, start_node, via_core)
         extra = await http.post(base + "/control/fly", json={"x": 1, "y": 1, "z": 3})
         not_json = await http.post(base + "/control/fly", content=b"{x", headers={"content-type": "application/json"})
         nan = await http.post(base + "/control/fly", content=b'{"x": NaN, "y": 0}', headers={"content-type": "application/json"})
+        # Over the size limit: refused before the call path, on the node and in the core alike.
+        limit = control.settings.max_message_bytes
+        oversized = await http.post(base + "/control/fly", content=b" " * (limit + 1), headers={"content-type": "application/json"})
     for reply in (wrong_type, extra, not_json, nan):
         assert reply.status_code == 422, reply.text
         assert isinstance(reply.json()["detail"], list)
     assert wrong_type.json()["detail"][0]["loc"][-1] == "x"
+    assert oversized.status_code == 413 and "limit" in oversized.json()["detail"]
 
 
 async def test_gateway_errors_say_what_to_do(core, start_node) -> None:

@@ -107,7 +107,10 @@ def _patient(settings):  # type: ignore[no-untyped-def]
 async def test_slow_reader_loses_oldest_and_does_not_slow_others(start_node) -> None:
     sink = await start_node(lambda settings: Teleop(_patient(settings)))
     outboxes = sink._participant.endpoints["/echo"].outboxes
-    async with connect(stream_url(sink.url, "/echo", queue=5), max_queue=1) as slow:
+    # No keepalive from this client: it stops reading on purpose, so the server's pong would
+    # wait behind megabytes of unread frames, and on a loaded machine the client's own ping
+    # timeout (20 s) would end the connection mid-test without a close frame.
+    async with connect(stream_url(sink.url, "/echo", queue=5), max_queue=1, ping_interval=None) as slow:
         await wait_until(lambda: len(outboxes) == 1, what="the slow reader")
         (slow_outbox,) = outboxes
         async with connect(stream_url(sink.url, "/echo")) as fast:
@@ -139,7 +142,7 @@ async def test_a_stalled_reader_is_closed_with_4001_and_the_others_keep_their_ra
         lambda settings: Teleop(settings.model_copy(update={"ping_interval_s": 5.0, "ping_timeout_s": 60.0, "stall_timeout_s": 1.0}))
     )
     outboxes = sink._participant.endpoints["/echo"].outboxes
-    async with connect(stream_url(sink.url, "/echo", queue=5), max_queue=1) as stalled:
+    async with connect(stream_url(sink.url, "/echo", queue=5), max_queue=1, ping_interval=None) as stalled:  # no keepalive: see the test above
         await wait_until(lambda: len(outboxes) == 1, what="the stalled reader")
         (stalled_outbox,) = outboxes
         async with connect(stream_url(sink.url, "/echo", queue=10_000), max_size=None) as fast:
