@@ -15,7 +15,12 @@ from dataclasses import dataclass
 import pybullet as p
 
 from sim_server.robot.bodies import SCAN_MASK
-from sim_server.robot.limits import ODOM_EVERY_STEPS, PHYSICS_HZ, SCAN_EVERY_STEPS
+from sim_server.robot.limits import (
+    CONTROL_EVERY_STEPS,
+    ODOM_EVERY_STEPS,
+    PHYSICS_HZ,
+    SCAN_EVERY_STEPS,
+)
 from sim_server.robot.world import RobotWorld, RobotWorldConfig
 
 __all__ = ["RobotSpeedReading", "measure"]
@@ -104,9 +109,11 @@ def _world_rate(seed: int, robots: int, steps: int) -> _Run:
 
 
 def _bare_rate(seed: int, robots: int, steps: int) -> _Run:
-    """stepSimulation, and every SCAN_EVERY_STEPS steps the very rays of each robot's scan, in
-    one rayTestBatch each with the laser's collision mask: the least any program simulating this
-    scene (the same bodies, collision filters and time step) could do."""
+    """stepSimulation, the person walking (its constraint moved each control tick, as the scene
+    has it), and every SCAN_EVERY_STEPS steps the very rays of each robot's scan, in one
+    rayTestBatch each with the laser's collision mask: the least any program simulating this
+    scene (the same bodies, collision filters, time step and motion) could do. The robots stand,
+    as they do in the node the benchmark compares with (nobody commands them)."""
     with _settled(seed, robots) as world:
         client = world.client
         laser = world._laser  # the same ray arrays the world casts
@@ -120,6 +127,8 @@ def _bare_rate(seed: int, robots: int, steps: int) -> _Run:
         clocks = _Clocks()
         for done in range(1, steps + 1):
             step_simulation(physicsClientId=client)
+            if done % CONTROL_EVERY_STEPS == 0:
+                world.walk_person()
             if done % SCAN_EVERY_STEPS == 0:
                 t0 = time.perf_counter()
                 for start_points, end_points in rays:

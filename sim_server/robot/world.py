@@ -185,7 +185,11 @@ class RobotWorld(BulletWorld):
             if command != robot.driving:
                 robot.driving = command
                 _drive_wheels(client, robot.body, command, (left_angle, right_angle))
-        # The person's target moves one control tick ahead along the loop; the constraint pulls.
+        self.walk_person()
+
+    def walk_person(self) -> None:
+        """The person's next stride (each control tick): the target moves one tick ahead along
+        the loop and the constraint pulls the legs there."""
         self._walked_m += PERSON_SPEED * CONTROL_EVERY_STEPS * PHYSICS_DT_S
         x, y, heading = self.loop.at(self._walked_m)
         p.changeConstraint(
@@ -193,7 +197,7 @@ class RobotWorld(BulletWorld):
             person_pivot(x, y),
             jointChildFrameOrientation=p.getQuaternionFromEuler((0.0, 0.0, heading)),
             maxForce=PERSON_MAX_FORCE_N,
-            physicsClientId=client,
+            physicsClientId=self._client,
         )
 
     # -- read-out ------------------------------------------------------------------------------
