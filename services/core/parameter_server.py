@@ -20,7 +20,7 @@ import copy
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Depends, HTTPException, Request
-from pydantic import BaseModel
+from pydantic import BaseModel, StringConstraints
 
 from services.runtime.auth import token_required
 from services.runtime.rosparam import check_parameter_value, parameter_tokens
@@ -100,6 +100,10 @@ def _tree(request: Request) -> ParameterTree:
 
 TreeDep = Annotated[ParameterTree, Depends(_tree)]
 
+# A parameter's name under /api/rosparam/: names (letters, digits and _, not a digit first) between
+# slashes. In the schema, so that clients (and the fuzzer) know what a valid name is.
+ParameterName = Annotated[str, StringConstraints(pattern=r"^[A-Za-z_][A-Za-z0-9_]*(/+[A-Za-z_][A-Za-z0-9_]*)*/*$")]
+
 # A name that is not a ROS name is a 422 like any other invalid input; an unset one is a 404.
 _BAD_NAME: dict[int | str, dict[str, Any]] = {422: {"description": "Not a ROS parameter name (letters, digits and _ between slashes)"}}
 _UNSET: dict[int | str, dict[str, Any]] = {404: {"description": "No such parameter"}}
@@ -107,7 +111,7 @@ _UNSET: dict[int | str, dict[str, Any]] = {404: {"description": "No such paramet
 
 @router.get("", responses=_UNSET | _BAD_NAME)
 @router.get("/{name:path}", responses=_UNSET | _BAD_NAME)
-async def get_parameter(tree: TreeDep, name: str = "") -> NamedValue:
+async def get_parameter(tree: TreeDep, name: ParameterName = "") -> NamedValue:
     """A parameter's value; a namespace's is the mapping of what is under it."""
     full = "/" + name.strip("/")
     try:
@@ -120,7 +124,7 @@ async def get_parameter(tree: TreeDep, name: str = "") -> NamedValue:
 
 @router.put("", dependencies=[Depends(token_required)], responses=_BAD_NAME)
 @router.put("/{name:path}", dependencies=[Depends(token_required)], responses=_BAD_NAME)
-async def set_parameter(body: ParameterValue, tree: TreeDep, name: str = "") -> NamedValue:
+async def set_parameter(body: ParameterValue, tree: TreeDep, name: ParameterName = "") -> NamedValue:
     """Set a parameter (a mapping sets the whole namespace under the name)."""
     full = "/" + name.strip("/")
     try:
@@ -131,7 +135,7 @@ async def set_parameter(body: ParameterValue, tree: TreeDep, name: str = "") -> 
 
 
 @router.delete("/{name:path}", dependencies=[Depends(token_required)], responses=_UNSET | _BAD_NAME)
-async def delete_parameter(tree: TreeDep, name: str) -> NamedValue:
+async def delete_parameter(tree: TreeDep, name: ParameterName) -> NamedValue:
     """Delete a parameter and everything under it; the answer holds what was deleted."""
     full = "/" + name.strip("/")
     try:

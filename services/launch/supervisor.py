@@ -34,10 +34,10 @@ from services.launch.spec import LaunchSpec
 from services.runtime.http_client import HttpClient, HttpError
 from services.runtime.ports import port_is_free
 from services.runtime.rosparam import RosParamClient, RosParamError
-from shared_models.skydeck_launch import KillNodeResponse
 
 if TYPE_CHECKING:
     from services.runtime.node import Node
+    from shared_models.skydeck_launch import KillNodeResponse
 
 __all__ = ["CommandFor", "NodeState", "NodeStatus", "Supervisor"]
 
@@ -441,6 +441,9 @@ class Supervisor:
     async def kill(self, node: str) -> KillNodeResponse:
         """Stop the child running graph node ``node`` for good (``skydeck node kill``); the
         answer's ``reason`` says what was done or why not (``KillNodeResponse``'s constants)."""
+        # Message types load only when a kill is asked: plain launches stay light (test_exports).
+        from shared_models.skydeck_launch import KillNodeResponse
+
         child, in_graph = await self._child_of_node(node)
 
         def refuse(reason: str, message: str) -> KillNodeResponse:
