@@ -44,10 +44,9 @@ from services.core.settings import CoreSettings
 from services.runtime.auth import NOT_AUTHORISED, token_matches
 from services.runtime.edge.frames import FrameRejected
 from services.runtime.edge.topic_socket import serve_topic_socket
+from services.runtime.edge_checks import edge_checks
 from services.runtime.http_client import HttpClient
 from services.runtime.http_errors import install_error_handlers
-from services.runtime.limits import BodySizeLimit
-from services.runtime.origin import SameOriginOnly
 from services.runtime.settings import reachable_host
 from services.runtime.wire import Close
 
@@ -60,12 +59,20 @@ _THREE_DIR = _WEB_UI / "vendor" / "node_modules" / "three"  # the 3D view's libr
 
 
 class CoreApp(FastAPI):
-    """The core's FastAPI app, with service calls through the gateway taken before its layers
-    (:class:`~services.core.gateway.ServiceCallsFirst`)."""
+    """The core's FastAPI app. Every request meets the edge checks first (:func:`edge_checks`:
+    origin, body size); then a service call through the gateway is taken before FastAPI's own
+    layers (:class:`~services.core.gateway.ServiceCallsFirst`), and the rest goes through FastAPI."""
 
     service_calls_first: ServiceCallsFirst | None = None
 
+    def __init__(self, *, max_message_bytes: int, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self._checked = edge_checks(self._dispatch, max_message_bytes)
+
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        await self._checked(scope, receive, send)
+
+    async def _dispatch(self, scope: Scope, receive: Receive, send: Send) -> None:
         first = self.service_calls_first
         if first is not None and first.takes(scope):
             await first(scope, receive, send)
@@ -125,16 +132,13 @@ def create_app(
         redoc_url=None,
         openapi_url=None,
         lifespan=lifespan,
+        max_message_bytes=settings.max_message_bytes,
     )
     app.state.registry = registry
     app.state.settings = settings
     app.state.core_node = core_node
     app.state.rosparam = ParameterTree()  # ROS 1's parameter server: the core's, as roscore's
-    app.service_calls_first = ServiceCallsFirst(
-        registry, lambda: getattr(app.state, "gateway", None), max_bytes=settings.max_message_bytes
-    )
-    app.add_middleware(BodySizeLimit, max_bytes=settings.max_message_bytes)
-    app.add_middleware(SameOriginOnly)
+    app.service_calls_first = ServiceCallsFirst(registry, lambda: getattr(app.state, "gateway", None))
     install_error_handlers(app)
     app.include_router(api_router)
     app.include_router(recordings_router)

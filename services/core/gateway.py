@@ -24,8 +24,6 @@ from services.core.settings import CoreSettings
 from services.runtime.auth import presented_token
 from services.runtime.edge.topic_socket import serve_topic_socket
 from services.runtime.http_client import HttpClient, HttpError
-from services.runtime.limits import BodySizeLimit
-from services.runtime.origin import SameOriginOnly
 from shared_models import InvalidNameError, resolve_name
 
 __all__ = ["Gateway", "ServiceCallsFirst"]
@@ -118,15 +116,14 @@ class ServiceCallsFirst:
     telemetry and body-limit middleware, routing): the gateway's half of a forwarded call.
 
     Profiling the core during gateway calls showed those layers, which such a call does not
-    use, cost a fifth of its work. The same origin and body-size checks as every other request
-    still apply (:class:`SameOriginOnly`, :class:`BodySizeLimit`). Used by the core's app
-    (:class:`services.core.app.CoreApp`), which asks :meth:`takes` first.
+    use, cost a fifth of its work. Used by the core's app (:class:`services.core.app.CoreApp`),
+    inside the edge checks every request meets (origin, body size), which asks :meth:`takes`
+    first.
     """
 
-    def __init__(self, registry: Registry, gateway: Callable[[], Gateway | None], *, max_bytes: int) -> None:
+    def __init__(self, registry: Registry, gateway: Callable[[], Gateway | None]) -> None:
         self._registry = registry
         self._gateway = gateway
-        self._checked = SameOriginOnly(BodySizeLimit(self._call, max_bytes=max_bytes))
 
     def takes(self, scope: Scope) -> bool:
         """Whether ``scope`` is a POST to a registered service (while the gateway runs)."""
@@ -138,9 +135,6 @@ class ServiceCallsFirst:
         )
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
-        await self._checked(scope, receive, send)
-
-    async def _call(self, scope: Scope, receive: Receive, send: Send) -> None:
         gateway = self._gateway()
         if gateway is None:  # stopped between takes() and here: as a stopped core answers
             await _error(503, "the core is shutting down")(scope, receive, send)

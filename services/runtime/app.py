@@ -18,10 +18,9 @@ from starlette.websockets import WebSocket
 
 from services.runtime.auth import NOT_AUTHORISED, token_matches
 from services.runtime.edge.topic_socket import serve_topic_socket
+from services.runtime.edge_checks import edge_checks
 from services.runtime.endpoint import TopicEndpoint
 from services.runtime.http_errors import install_error_handlers
-from services.runtime.limits import BodySizeLimit
-from services.runtime.origin import SameOriginOnly
 from services.runtime.service import Service
 from shared_models import Message
 
@@ -49,8 +48,7 @@ class NodeApp:
             version="0.1.0",
             redoc_url=None,
         )
-        self.fastapi.add_middleware(BodySizeLimit, max_bytes=max_message_bytes)
-        self.fastapi.add_middleware(SameOriginOnly)
+        self.fastapi.add_middleware(edge_checks, max_bytes=max_message_bytes)
         install_error_handlers(self.fastapi)
 
         async def _health() -> dict[str, Any]:
