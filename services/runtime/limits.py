@@ -6,15 +6,9 @@ import json
 
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
-from shared_models.errors import SkydeckError
-
 __all__ = ["BodySizeLimit"]
 
-
-class _TooLarge(SkydeckError):
-    """A body went over the limit while it was read (answered 413 here, never raised further)."""
-
-    http_status = 413
+_GONE: Message = {"type": "http.disconnect"}
 
 
 class BodySizeLimit:
@@ -34,27 +28,37 @@ class BodySizeLimit:
                 return
         received = 0
         response_started = False
+        refused = False
 
         async def limited_receive() -> Message:
-            nonlocal received
+            # Past the limit the app is told the client left (it stops reading; raising here
+            # instead would reach FastAPI's body parsing, which answers any error as a bad body).
+            nonlocal received, refused
+            if refused:
+                return _GONE
             message = await receive()
             if message["type"] == "http.request":
                 received += len(message.get("body", b""))
                 if received > self.max_bytes:
-                    raise _TooLarge
+                    if not response_started:
+                        refused = True
+                        await self._refuse(send)
+                    return _GONE
             return message
 
         async def tracking_send(message: Message) -> None:
             nonlocal response_started
+            if refused:
+                return  # the app's answer to a body cut short: the 413 went out instead
             if message["type"] == "http.response.start":
                 response_started = True
             await send(message)
 
         try:
             await self.app(scope, limited_receive, tracking_send)
-        except _TooLarge:
-            if not response_started:
-                await self._refuse(send)
+        except Exception:
+            if not refused:
+                raise  # after the 413, the app's error at a body cut short is expected
 
     async def _refuse(self, send: Send) -> None:
         body = json.dumps({"detail": f"request body over the {self.max_bytes}-byte limit"}).encode()

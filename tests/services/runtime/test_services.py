@@ -65,6 +65,29 @@ async def test_bad_body_gets_422_with_fastapi_detail(core, start_node, via_core)
     assert oversized.status_code == 413 and "limit" in oversized.json()["detail"]
 
 
+@pytest.mark.parametrize("via_core", [False, True])
+async def test_a_body_over_the_limit_is_413_even_without_a_length(core, start_node, via_core) -> None:
+    """A chunked body declares no length: it is counted as it comes and refused at the limit
+    (not read on as a bad body, 422), to a service on the node and through the core's early
+    path, and to the core's own routes."""
+    control = await start_node(Control)
+    base = core.url if via_core else control.url
+    limit = control.settings.max_message_bytes
+
+    async def chunks():  # type: ignore[no-untyped-def]
+        for _ in range(limit // 65536 + 2):
+            yield b" " * 65536
+
+    async with httpx.AsyncClient() as http:
+        paths = ["/control/fly"] + (["/no/such/service"] if via_core else [])  # the latter: FastAPI's route
+        for path in paths:
+            reply = await http.post(base + path, content=chunks(), headers={"content-type": "application/json"})
+            assert "content-length" not in reply.request.headers
+            assert reply.status_code == 413 and f"over the {limit}-byte limit" in reply.json()["detail"], (path, reply.text)
+        after = await http.post(base + "/control/take_off")  # the server goes on
+    assert after.status_code == 200
+
+
 async def test_gateway_errors_say_what_to_do(core, start_node) -> None:
     control = await start_node(lambda s: Control(s.model_copy(update={"port": 0})))
     core.app.state.settings.gateway_timeout_s = 0.3
