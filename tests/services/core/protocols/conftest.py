@@ -8,6 +8,7 @@ The clients are the ones users have: roslibpy (PyPI) and, through Node, roslib a
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import json
 import shutil
 import sys
@@ -192,3 +193,26 @@ async def tuned(bridge: Bridge) -> AsyncIterator[Tuned]:
     await wait_until(lambda: bridge.core.registry.service("/tuned/set_parameters") is not None, what="the node")
     yield node
     await node.stop()
+
+
+class Stuck(Node):
+    """A node whose one service, /stuck/wait, never answers."""
+
+    def __init__(self, settings: NodeSettings) -> None:
+        super().__init__("stuck", settings=settings)
+        self.create_service(Trigger, "/stuck/wait", self.wait)
+
+    async def wait(self, request: object) -> None:
+        await asyncio.Event().wait()
+
+
+@contextlib.asynccontextmanager
+async def stuck_node(bridge: Bridge) -> AsyncIterator[Stuck]:
+    """A Stuck node on the bridge's core, its service registered, for the block's length."""
+    node = Stuck(NodeSettings(core_url=bridge.core_url, port=0))
+    await node.start()
+    try:
+        await wait_until(lambda: bridge.core.registry.service("/stuck/wait") is not None, what="the service")
+        yield node
+    finally:
+        await node.stop()

@@ -14,11 +14,9 @@ from websockets.asyncio.client import ClientConnection, connect
 from websockets.exceptions import ConnectionClosed
 from websockets.typing import Subprotocol
 
-from services.runtime import NodeSettings
 from tests.conftest import wait_until
 from tests.services.cli.test_cli import skydeck
-from tests.services.core.protocols.conftest import Bridge
-from tests.services.core.protocols.test_rosbridge import Stuck
+from tests.services.core.protocols.conftest import Bridge, stuck_node
 
 pytestmark = pytest.mark.timeout(60)
 
@@ -229,18 +227,12 @@ def _publishers(bridge: Bridge, topic: str) -> list[str]:
 
 async def test_a_call_that_is_never_answered_fails_at_the_default_timeout(impatient_bridge: Bridge) -> None:
     bridge = impatient_bridge  # the core's default call timeout is 1 s here
-    stuck = Stuck(NodeSettings(core_url=bridge.core_url, port=0))
-    await stuck.start()
-    try:
-        await wait_until(lambda: bridge.core.registry.service("/stuck/wait") is not None, what="the service")
-        async with connect(bridge.foxglove_url, subprotocols=V1) as ws:
-            services: dict[str, int] = {}
-            while "/stuck/wait" not in services:
-                services |= {s["name"]: s["id"] for s in (await receive(ws, "advertiseServices"))["services"]}
-            await ws.send(struct.pack("<BIII", 2, services["/stuck/wait"], 5, 4) + b"json{}")
-            failure = await receive(ws, "serviceCallFailure")
-            assert failure["callId"] == 5 and "did not answer within 1 s" in failure["message"]
-            await ws.send(struct.pack("<BIII", 2, services["/control/take_off"], 6, 4) + b"json{}")
-            assert struct.unpack_from("<III", await binary(ws, 0x03), 1)[1] == 6  # the connection carries on
-    finally:
-        await stuck.stop()
+    async with stuck_node(bridge), connect(bridge.foxglove_url, subprotocols=V1) as ws:
+        services: dict[str, int] = {}
+        while "/stuck/wait" not in services:
+            services |= {s["name"]: s["id"] for s in (await receive(ws, "advertiseServices"))["services"]}
+        await ws.send(struct.pack("<BIII", 2, services["/stuck/wait"], 5, 4) + b"json{}")
+        failure = await receive(ws, "serviceCallFailure")
+        assert failure["callId"] == 5 and "did not answer within 1 s" in failure["message"]
+        await ws.send(struct.pack("<BIII", 2, services["/control/take_off"], 6, 4) + b"json{}")
+        assert struct.unpack_from("<III", await binary(ws, 0x03), 1)[1] == 6  # the connection carries on

@@ -12,11 +12,9 @@ import httpx
 import pytest
 from websockets.asyncio.client import ClientConnection, connect
 
-from services.runtime import Node, NodeSettings
-from shared_models.std_srvs import Trigger
 from tests.conftest import wait_until
 from tests.services.cli.test_cli import skydeck
-from tests.services.core.protocols.conftest import Bridge
+from tests.services.core.protocols.conftest import Bridge, stuck_node
 
 pytestmark = pytest.mark.timeout(60)
 
@@ -125,54 +123,33 @@ async def test_call_service_args_as_object_list_or_none(bridge: Bridge) -> None:
     assert empty == {"op": "service_response", "service": "/control/take_off", "id": "3", "values": {"success": True, "message": "All ok!"}, "result": True}
 
 
-class Stuck(Node):
-    def __init__(self, settings) -> None:
-        super().__init__("stuck", settings=settings)
-        self.create_service(Trigger, "/stuck/wait", self.wait)
-
-    async def wait(self, request):
-        await asyncio.sleep(3600)
-
-
 async def test_a_call_nobody_answers_ends_with_its_timeout(bridge: Bridge) -> None:
-    stuck = Stuck(NodeSettings(core_url=bridge.core_url, port=0))
-    await stuck.start()
-    try:
-        await wait_until(lambda: bridge.core.registry.service("/stuck/wait") is not None, what="the service")
-        async with connect(bridge.rosbridge_url) as ws:
-            answer = await call(ws, "/stuck/wait", "t", timeout=0.3)
-            assert answer["result"] is False and "did not answer within 0.3 s" in answer["values"]
-            # A service hosted by a client that never answers ends the same way.
-            await send(ws, op="advertise_service", service="/mute/trigger", type="std_srvs/srv/Trigger")
-            await wait_until(lambda: bridge.core.registry.service("/mute/trigger") is not None, what="hosting")
-            async with connect(bridge.rosbridge_url) as caller:
-                answer = await call(caller, "/mute/trigger", "m", timeout=0.3)
-            assert answer["result"] is False and "did not answer within 0.3 s" in answer["values"]
-            forwarded = await receive(ws, "call_service")  # the host was asked, and never replied
-            assert forwarded["service"] == "/mute/trigger" and forwarded["args"] == {}
-    finally:
-        await stuck.stop()
+    async with stuck_node(bridge), connect(bridge.rosbridge_url) as ws:
+        answer = await call(ws, "/stuck/wait", "t", timeout=0.3)
+        assert answer["result"] is False and "did not answer within 0.3 s" in answer["values"]
+        # A service hosted by a client that never answers ends the same way.
+        await send(ws, op="advertise_service", service="/mute/trigger", type="std_srvs/srv/Trigger")
+        await wait_until(lambda: bridge.core.registry.service("/mute/trigger") is not None, what="hosting")
+        async with connect(bridge.rosbridge_url) as caller:
+            answer = await call(caller, "/mute/trigger", "m", timeout=0.3)
+        assert answer["result"] is False and "did not answer within 0.3 s" in answer["values"]
+        forwarded = await receive(ws, "call_service")  # the host was asked, and never replied
+        assert forwarded["service"] == "/mute/trigger" and forwarded["args"] == {}
 
 
 async def test_a_call_with_no_timeout_ends_at_the_default_with_an_error_response(impatient_bridge: Bridge) -> None:
     bridge = impatient_bridge  # the core's gateway timeout (SKYDECK_GATEWAY_TIMEOUT_S) is 1 s here
-    stuck = Stuck(NodeSettings(core_url=bridge.core_url, port=0))
-    await stuck.start()
-    try:
-        await wait_until(lambda: bridge.core.registry.service("/stuck/wait") is not None, what="the service")
-        async with connect(bridge.rosbridge_url) as ws:
-            answer = await call(ws, "/stuck/wait", "d")
+    async with stuck_node(bridge), connect(bridge.rosbridge_url) as ws:
+        answer = await call(ws, "/stuck/wait", "d")
+        assert answer["result"] is False and "did not answer within 1 s" in answer["values"]
+        await send(ws, op="advertise_service", service="/mute/trigger", type="std_srvs/srv/Trigger")
+        await wait_until(lambda: bridge.core.registry.service("/mute/trigger") is not None, what="hosting")
+        async with connect(bridge.rosbridge_url) as caller:
+            answer = await call(caller, "/mute/trigger", "m")
             assert answer["result"] is False and "did not answer within 1 s" in answer["values"]
-            await send(ws, op="advertise_service", service="/mute/trigger", type="std_srvs/srv/Trigger")
-            await wait_until(lambda: bridge.core.registry.service("/mute/trigger") is not None, what="hosting")
-            async with connect(bridge.rosbridge_url) as caller:
-                answer = await call(caller, "/mute/trigger", "m")
-                assert answer["result"] is False and "did not answer within 1 s" in answer["values"]
-                # Both connections carry on.
-                assert (await call(caller, "/control/take_off", "t"))["result"] is True
-            assert (await call(ws, "rosapi/topic_type", "y", args={"topic": "/clock"}))["result"] is True
-    finally:
-        await stuck.stop()
+            # Both connections carry on.
+            assert (await call(caller, "/control/take_off", "t"))["result"] is True
+        assert (await call(ws, "rosapi/topic_type", "y", args={"topic": "/clock"}))["result"] is True
 
 
 @pytest.mark.parametrize(

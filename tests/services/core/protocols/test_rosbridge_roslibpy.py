@@ -6,10 +6,8 @@ import asyncio
 
 import pytest
 
-from services.runtime import NodeSettings
 from tests.conftest import wait_until
-from tests.services.core.protocols.conftest import Bridge, Tuned
-from tests.services.core.protocols.test_rosbridge import Stuck
+from tests.services.core.protocols.conftest import Bridge, Tuned, stuck_node
 
 pytestmark = pytest.mark.timeout(90)
 
@@ -103,14 +101,9 @@ async def test_roslibpy_calling_a_service_that_never_answers_gets_an_error_at_th
     impatient_bridge: Bridge,
 ) -> None:
     bridge = impatient_bridge  # the core's default call timeout (SKYDECK_GATEWAY_TIMEOUT_S) is 1 s here
-    stuck = Stuck(NodeSettings(core_url=bridge.core_url, port=0))
-    await stuck.start()
-    try:
-        await wait_until(lambda: bridge.core.registry.service("/stuck/wait") is not None, what="the service")
+    async with stuck_node(bridge):
         client = await bridge.client("roslibpy_client.py", bridge.rosbridge_url, "stuck")
         line = await client.expect("stuck")
         assert line["kind"] == "ServiceException" and "did not answer within 1 s" in line["stuck"]
         assert (await client.expect("after"))["after"] == "geometry_msgs/msg/PoseStamped"
         await client.finish()
-    finally:
-        await stuck.stop()
