@@ -279,3 +279,14 @@ def test_the_grid_and_the_fixed_frames_axes(dashboard) -> None:  # type: ignore[
     v = wait_view(page, "v.fixedFrame === 'base_link'")
     assert v["grid"] is False and v["axes"]["shown"]
     assert page.locator("#view3d-displays li[data-display=grid] [data-action=visible]").is_checked() is False
+    # A change made just before the page goes (the save waits a moment after each change) is
+    # still kept: the box ticked and the reload started in the same task, so only the save on
+    # pagehide can have written it.
+    page.evaluate(
+        """() => {
+        document.querySelector('#view3d-displays li[data-display=grid] [data-action=visible]').click();
+        location.reload();
+    }"""
+    )
+    open_3d(page)
+    assert wait_view(page, "v.fixedFrame === 'base_link'")["grid"] is True
