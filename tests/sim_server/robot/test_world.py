@@ -116,12 +116,17 @@ def test_a_command_that_is_not_finite_is_refused_and_changes_nothing(room: Robot
         room.set_cmd_vel(1, 0.1, 0.0)  # there is one robot
 
 
+def _legs(world: RobotWorld) -> list[tuple[float, float]]:
+    """Where the centres of the person's two legs are (x, y)."""
+    px, py, heading = world.person_pose()
+    half = LEG_SPACING_M / 2.0
+    return [(px - s * half * math.sin(heading), py + s * half * math.cos(heading)) for s in (1, -1)]
+
+
 def _expected_ranges(world: RobotWorld) -> list[float]:
     """Each beam's true distance to the walls and the person's legs, by plain geometry."""
     x, y, yaw = world.robot_pose(0)
-    px, py, heading = world.person_pose()
-    half = LEG_SPACING_M / 2.0
-    legs = [(px - s * half * math.sin(heading), py + s * half * math.cos(heading)) for s in (1, -1)]
+    legs = _legs(world)
     ranges = []
     for i in range(SCAN_BEAMS):
         a = yaw + i * SCAN_ANGLE_INCREMENT
@@ -201,6 +206,34 @@ def test_the_person_walks_the_loop_and_pushes_nothing_through(room: RobotWorld) 
     room.step(round(room.loop.length_m / PERSON_SPEED * PHYSICS_HZ))  # once round
     x2, y2, _ = room.person_pose()
     assert math.hypot(x2 - x1, y2 - y1) < 0.1
+
+
+def test_a_robot_in_the_persons_way_is_shoved_never_walked_through(room: RobotWorld) -> None:
+    drive(room, 0.0, math.pi / 4, 2.0)  # a quarter turn: facing +y
+    drive(room, 0.3, 0.0, 4.8)  # onto the loop's lower side (y = 1.44 at x = 0)
+    x0, y0, _ = room.robot_pose(0)
+    assert room.loop.distance_to(x0, y0) < 0.1, (x0, y0)
+    closest = math.inf
+    for _ in range(round(room.loop.length_m / PERSON_SPEED * PHYSICS_HZ / COMMAND_EVERY_STEPS)):  # once round
+        room.step(COMMAND_EVERY_STEPS)
+        x, y, _ = room.robot_pose(0)
+        closest = min(closest, *(math.hypot(lx - x, ly - y) for lx, ly in _legs(room)))
+    assert closest > ROBOT_RADIUS_M + LEG_RADIUS_M - 0.02, "a leg went into the robot"
+    x, y, _ = room.robot_pose(0)
+    assert math.hypot(x - x0, y - y0) > 0.1, "the person walked by without touching the robot"
+
+
+def test_a_robot_driven_into_another_stops_against_it_with_its_bumper_pressed(
+    make_world: Callable[..., RobotWorld],
+) -> None:
+    world = make_world(robots=3, obstacles=0)
+    assert ROBOT_STARTS_M[2] == (-1.5, 0.0) and ROBOT_STARTS_M[0] == (0.0, 0.0)  # robot 2 faces robot 0
+    drive(world, 0.3, 0.0, 8.0, robot=2)  # 2.4 m of driving at a robot 1.5 m ahead
+    x2, y2, _ = world.robot_pose(2)
+    x0, y0, _ = world.robot_pose(0)
+    assert x2 < x0 and math.hypot(x0 - x2, y0 - y2) > 2 * ROBOT_RADIUS_M - 0.01, "one robot went into the other"
+    bump = world.bump(2)
+    assert bump.left_front or bump.right_front
 
 
 def test_odometry_tracks_the_truth_while_driving_a_square(room: RobotWorld) -> None:
