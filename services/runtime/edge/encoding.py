@@ -79,10 +79,11 @@ def encode(msg: Message, encoding: Encoding) -> str | bytes:
 
 def decode(frame: str | bytes, msg_type: type[Message], type_name: str) -> Message:
     """Validate one frame (JSON text or msgpack bytes) into ``msg_type``, or FrameRejected(1007)."""
+    # The type's validator itself, not model_validate(_json): their keyword handling was ~15% of
+    # a pose's decode (docs/performance.md).
     try:
         if isinstance(frame, str):
             return msg_type.__pydantic_validator__.validate_json(frame)  # type: ignore[no-any-return]
-        # The validator itself: model_validate's keyword handling costs a tenth of a pose's decode.
         return msg_type.__pydantic_validator__.validate_python(ormsgpack.unpackb(frame))  # type: ignore[no-any-return]
     except ValidationError as error:
         raise FrameRejected(Close.INVALID_FRAME, describe_validation_error(type_name, error)) from None
