@@ -42,8 +42,6 @@ ARGUMENTS = [
     (["run", "no_such_node"], "no_such_node"),
     (["run", "missing.py"], "missing.py"),
     (["core", "--port", "70000"], "--port"),
-    (["bench", "--out", "."], "--out: cannot write .: it is a folder"),  # before any run
-    (["bench", "--out", "syntax.yaml/results.json"], "syntax.yaml is not a folder"),  # a file of LAUNCH_FILES
     (["service", "call", "/control/fly", "{bad"], "not valid YAML or JSON"),
     (["topic", "pub", "/x", "geometry_msgs/msg/Nope", "{}"], "unknown interface"),
     (["topic", "echo", "/bad//name"], "invalid name"),
