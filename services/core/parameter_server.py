@@ -23,7 +23,7 @@ from fastapi import APIRouter, Depends, HTTPException, Request
 from pydantic import BaseModel, StringConstraints
 
 from services.runtime.auth import token_required
-from services.runtime.rosparam import check_parameter_value, parameter_tokens
+from services.runtime.rosparam import PARAMETER_TOKEN, check_parameter_value, parameter_tokens
 
 __all__ = ["ParameterTree", "router"]
 
@@ -100,12 +100,16 @@ def _tree(request: Request) -> ParameterTree:
 
 TreeDep = Annotated[ParameterTree, Depends(_tree)]
 
-# A parameter's name under /api/rosparam/: names (letters, digits and _, not a digit first) between
-# slashes. In the schema, so that clients (and the fuzzer) know what a valid name is.
-ParameterName = Annotated[str, StringConstraints(pattern=r"^[A-Za-z_][A-Za-z0-9_]*(/+[A-Za-z_][A-Za-z0-9_]*)*/*$")]
+# A parameter's name under /api/rosparam/: the tokens parameter_tokens takes, between slashes. In
+# the schema, so that clients (and the fuzzer) know what a valid name is; the tree then meets
+# only valid names, and its ValueError is about a value.
+ParameterName = Annotated[str, StringConstraints(pattern=rf"^{PARAMETER_TOKEN}(/+{PARAMETER_TOKEN})*/*$")]
 
 # A name that is not a ROS name is a 422 like any other invalid input; an unset one is a 404.
 _BAD_NAME: dict[int | str, dict[str, Any]] = {422: {"description": "Not a ROS parameter name (letters, digits and _ between slashes)"}}
+_BAD_VALUE: dict[int | str, dict[str, Any]] = {
+    422: {"description": "Not a ROS parameter name, or not a parameter value (null; a key that is not a name)"}
+}
 _UNSET: dict[int | str, dict[str, Any]] = {404: {"description": "No such parameter"}}
 
 
@@ -118,12 +122,10 @@ async def get_parameter(tree: TreeDep, name: ParameterName = "") -> NamedValue:
         return NamedValue(name=full, value=tree.get(full))
     except KeyError:
         raise HTTPException(404, f"no parameter {full}: see GET /api/rosparam for all") from None
-    except ValueError as error:
-        raise HTTPException(422, str(error)) from None
 
 
-@router.put("", dependencies=[Depends(token_required)], responses=_BAD_NAME)
-@router.put("/{name:path}", dependencies=[Depends(token_required)], responses=_BAD_NAME)
+@router.put("", dependencies=[Depends(token_required)], responses=_BAD_VALUE)
+@router.put("/{name:path}", dependencies=[Depends(token_required)], responses=_BAD_VALUE)
 async def set_parameter(body: ParameterValue, tree: TreeDep, name: ParameterName = "") -> NamedValue:
     """Set a parameter (a mapping sets the whole namespace under the name)."""
     full = "/" + name.strip("/")
@@ -143,6 +145,4 @@ async def delete_parameter(tree: TreeDep, name: ParameterName) -> NamedValue:
         tree.delete(full)
     except KeyError:
         raise HTTPException(404, f"no parameter {full}") from None
-    except ValueError as error:
-        raise HTTPException(422, str(error)) from None
     return NamedValue(name=full, value=value)

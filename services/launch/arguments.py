@@ -25,7 +25,7 @@ from pydantic import BaseModel, ConfigDict, Field, field_validator
 
 from services.launch.errors import LaunchError
 
-__all__ = ["LaunchArgument", "fill_arguments", "show_arguments", "substitute"]
+__all__ = ["LaunchArgument", "fill_arguments", "literal", "show_arguments", "substitute"]
 
 NO_DESCRIPTION = "no description given"
 
@@ -68,10 +68,10 @@ def substitute(text: str, values: Mapping[str, str]) -> str:
     """``text`` (a placeholder template) with ``{name}`` replaced for each name of ``values``;
     the other placeholders, and literal braces (``{{``), are left for the launch options."""
     out = []
-    for literal, field, _spec, _conversion in string.Formatter().parse(text):
-        out.append(_escape(literal))
+    for text_before, field, _spec, _conversion in string.Formatter().parse(text):
+        out.append(literal(text_before))
         if field is not None:
-            out.append(_escape(values[field]) if field in values else "{" + field + "}")
+            out.append(literal(values[field]) if field in values else "{" + field + "}")
     return "".join(out)
 
 
@@ -86,5 +86,6 @@ def show_arguments(arguments: Mapping[str, LaunchArgument]) -> str:
     return "\n".join(lines)
 
 
-def _escape(text: str) -> str:
+def literal(text: str) -> str:
+    """``text`` as a placeholder template that stands for itself: its braces doubled."""
     return text.replace("{", "{{").replace("}", "}}")

@@ -35,6 +35,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from services.launch.arguments import literal
 from services.launch.errors import LaunchFileError
 from services.launch.spec import LaunchSpec, NodeSpec
 
@@ -91,8 +92,9 @@ class RosLaunch:
                     name=node.launch_name,
                     run=str(node.program),
                     port_offset=NODE_PORT_OFFSET + index,
-                    args=tuple(_literal(arg) for arg in node.args),
-                    env={key: _literal(value) for key, value in node.env},
+                    # Braces in a roslaunch file are text; in a launch spec, placeholders.
+                    args=tuple(literal(arg) for arg in node.args),
+                    env={key: literal(value) for key, value in node.env},
                     respawn=node.respawn,
                     ready_timeout_s=_READY_TIMEOUT_S,
                 )
@@ -100,11 +102,6 @@ class RosLaunch:
         if not nodes:
             raise LaunchFileError(self.file, "the launch file starts no node (and a core already runs)")
         return LaunchSpec(nodes=tuple(nodes))
-
-
-def _literal(text: str) -> str:
-    """``text`` as a YAML launch's argument: braces there are placeholders, here they are text."""
-    return text.replace("{", "{{").replace("}", "}}")
 
 
 def load_roslaunch_file(path: str | Path, args: Mapping[str, str] | None = None) -> RosLaunch:

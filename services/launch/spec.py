@@ -64,7 +64,8 @@ PLACEHOLDERS = ("speed", "seed", "boxes", "robots", "base_port")
 # roslaunch file's node in a namespace is named by its graph name: robot1/talker).
 _NAME_PATTERN = r"^[A-Za-z][A-Za-z0-9_-]*(/[A-Za-z][A-Za-z0-9_-]*)*$"
 _RESERVED_NAMES = ("launch",)  # the supervisor's own lines start with "[launch]"
-_ARGUMENT_PATTERN = r"^[A-Za-z_][A-Za-z0-9_]*$"
+# An environment variable's or a launch argument's name (a placeholder's, so no dots or brackets).
+_Identifier = Annotated[str, Field(pattern=r"^[A-Za-z_][A-Za-z0-9_]*$")]
 
 
 def _check_placeholders(text: str, info: ValidationInfo) -> str:
@@ -93,9 +94,6 @@ def _check_placeholders(text: str, info: ValidationInfo) -> str:
 
 
 _Template = Annotated[str, AfterValidator(_check_placeholders)]
-_EnvName = Annotated[str, Field(pattern=r"^[A-Za-z_][A-Za-z0-9_]*$")]
-
-
 class NodeSpec(BaseModel):
     """One process of a launch: what to run, its port offset, flags, environment and policies."""
 
@@ -105,7 +103,7 @@ class NodeSpec(BaseModel):
     run: str = Field(min_length=1, description="core, a built-in node, or a path to a .py file")
     port_offset: int = Field(ge=0, le=1000, description="the node listens on base_port + this")
     args: tuple[_Template, ...] = Field(default=(), description="extra flags; may use placeholders")
-    env: dict[_EnvName, _Template] = Field(default_factory=dict, description="extra environment")
+    env: dict[_Identifier, _Template] = Field(default_factory=dict, description="extra environment")
     respawn: bool = Field(default=True, description="restart the node when it dies")
     ready_timeout_s: float = Field(default=20.0, gt=0, le=600, description="time to answer /health")
 
@@ -138,7 +136,7 @@ class LaunchSpec(BaseModel):
 
     model_config = ConfigDict(extra="forbid", frozen=True)
 
-    arguments: dict[Annotated[str, Field(pattern=_ARGUMENT_PATTERN)], LaunchArgument] = Field(
+    arguments: dict[_Identifier, LaunchArgument] = Field(
         default_factory=dict, description="launch arguments, `name:=value` on the command line"
     )
     nodes: tuple[NodeSpec, ...]

@@ -441,7 +441,8 @@ class Supervisor:
     async def kill(self, node: str) -> KillNodeResponse:
         """Stop the child running graph node ``node`` for good (``skydeck node kill``); the
         answer's ``reason`` says what was done or why not (``KillNodeResponse``'s constants)."""
-        # Message types load only when a kill is asked: plain launches stay light (test_exports).
+        # Imported here, not at the top: `services.launch` loads no message types (test_exports);
+        # the control node that calls this has loaded it already.
         from shared_models.skydeck_launch import KillNodeResponse
 
         child, in_graph = await self._child_of_node(node)
@@ -468,7 +469,8 @@ class Supervisor:
 
     async def _child_of_node(self, node: str) -> tuple[_Child | None, bool]:
         """The child whose process registered ``node`` (matched by pid), else one named so; and
-        whether the graph has ``node`` (if the core could be asked, else assumed)."""
+        whether the graph has ``node`` (if the core could be asked, else assumed; it matters
+        only when no child is found)."""
         in_graph = True
         if self._http is not None:
             with contextlib.suppress(HttpError, ValueError):
@@ -479,8 +481,7 @@ class Supervisor:
                     for child in self._children.values():
                         if child.pid == pid and child.running:
                             return child, True
-        named = self._children.get(node.lstrip("/"))
-        return named, in_graph or named is not None
+        return self._children.get(node.lstrip("/")), in_graph
 
     async def _start_control(self) -> None:
         from services.launch.control import LaunchControl  # the node SDK: only when asked for

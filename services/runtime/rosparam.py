@@ -19,11 +19,20 @@ from typing import Any
 from services.runtime.http_client import HttpClient, HttpError
 from shared_models.errors import SkydeckError
 
-__all__ = ["RosParamClient", "RosParamError", "RosParamUnreachable", "check_parameter_value", "parameter_tokens"]
+__all__ = [
+    "PARAMETER_TOKEN",
+    "RosParamClient",
+    "RosParamError",
+    "RosParamUnreachable",
+    "check_parameter_value",
+    "parameter_tokens",
+]
 
 _PATH = "/api/rosparam"
 _TIMEOUT_S = 5.0
-_TOKEN = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+PARAMETER_TOKEN = r"[A-Za-z_][A-Za-z0-9_]*"
+"""One part of a parameter name, between slashes (a regular expression): letters, digits and _."""
+_TOKEN = re.compile(PARAMETER_TOKEN)
 _MAX_DEPTH = 32
 
 

@@ -131,6 +131,7 @@ async def test_service_call_timeout_and_interface_list_of_messages(core, start_n
         (["launch", "--show-args", "no_such_launch"], "no such launch file"),
         (["completion", "fish"], "invalid choice: 'fish'"),
         (["bench", "--out", "pyproject.toml/bench/results.json"], "cannot write pyproject.toml/bench/results.json: "),
+        (["bench", "--out", "tests"], "cannot write tests: it is a folder"),
     ],
 )  # fmt: skip
 async def test_bad_input_is_one_error_line_and_a_non_zero_status(core, start_node, args, error) -> None:

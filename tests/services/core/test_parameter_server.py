@@ -74,6 +74,9 @@ async def test_the_client_sets_gets_and_deletes_through_the_core(core: CoreProce
             for method in ("GET", "PUT", "DELETE"):
                 reply = await plain.request(method, core.url + "/api/rosparam/a-b", json={"value": 1})
                 assert reply.status_code == 422 and reply.json()["detail"][0]["loc"] == ["path", "name"], method
+            # The pattern is parameter_tokens' own: its tokens between any slashes, never a digit first.
+            assert (await plain.get(core.url + "/api/rosparam/1a")).status_code == 422
+            assert (await plain.get(core.url + "/api/rosparam/no//such_/")).status_code == 404
     finally:
         await http.aclose()
 

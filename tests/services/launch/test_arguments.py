@@ -141,6 +141,8 @@ async def test_the_cli_shows_arguments_and_refuses_unknown_ones_in_one_line(tmp_
     assert status == 0 and "    'use_sim_time':" in out
     status, _, err = await skydeck(url, "launch", str(_write(tmp_path)), "world:=x", "--speed", "2", "nope:=1")
     assert status == 1 and err.count("\n") == 1 and "nope:=1: no such launch argument" in err
+    status, _, err = await skydeck(url, "launch", "x:=1")  # no file: the default one's arguments
+    assert status == 1 and err.count("\n") == 1 and "workshop.yaml: x:=1: no such launch argument (it declares none)" in err
     status, _, err = await skydeck(url, "launch", str(_write(tmp_path)), "world")
     assert status == 1 and "launch arguments are NAME:=VALUE" in err
     status, _, err = await skydeck(url, "launch", str(tmp_path / "none.yaml"), "--show-args")
