@@ -193,17 +193,14 @@ class Player(Node):
         try:
             if self.options.wait_for_subscribers:
                 await self._wait_for_subscribers()
-            loop = asyncio.get_running_loop()
-            done: asyncio.Future[None] = loop.create_future()
-            timeline = threading.Thread(target=self._timeline, args=(loop, done), name="bag-play-timeline", daemon=True)
-            timeline.start()
+            timeline = asyncio.ensure_future(asyncio.to_thread(self._timeline, asyncio.get_running_loop()))
             try:
-                await asyncio.shield(done)
+                await asyncio.shield(timeline)
             finally:
                 self._ending.set()
                 self._wake.set()  # out of _wait_until
                 self._in_flight.release()  # out of _in_flight_slot
-                await asyncio.shield(done)  # the thread reads the file: it ends before the file is closed
+                await asyncio.shield(timeline)  # the thread reads the file: it ends before the file is closed
         finally:
             self.destroy_node()
 
@@ -228,17 +225,12 @@ class Player(Node):
     # due with the OS's high-resolution timer, and only then hands it to the loop, whose part
     # is just the write (``publish(frame)``). The loop is never blocked by the waiting.
 
-    def _timeline(self, loop: asyncio.AbstractEventLoop, done: asyncio.Future[None]) -> None:
-        error: BaseException | None = None
-        try:
-            start_ns = self.reader.summary.start_ns + int(self.options.start_offset_s * 1e9)
-            while not self._ending.is_set():
-                self._timeline_once(loop, start_ns)
-                if not self.options.loop:
-                    break
-        except BaseException as caught:  # handed to the loop, which raises it in _play
-            error = caught
-        loop.call_soon_threadsafe(_settle, done, error)
+    def _timeline(self, loop: asyncio.AbstractEventLoop) -> None:
+        start_ns = self.reader.summary.start_ns + int(self.options.start_offset_s * 1e9)
+        while not self._ending.is_set():
+            self._timeline_once(loop, start_ns)
+            if not self.options.loop:
+                break
 
     def _timeline_once(self, loop: asyncio.AbstractEventLoop, start_ns: int) -> None:
         self._base = None
@@ -295,12 +287,3 @@ class Player(Node):
         now_ns = self._base[0] + int(elapsed_s * self.options.rate * 1e9)
         sec, nanosec = divmod(max(now_ns, self._position_ns), 1_000_000_000)
         self._clock_publisher.publish(Time(sec=sec, nanosec=nanosec))
-
-
-def _settle(done: asyncio.Future[None], error: BaseException | None) -> None:
-    if done.done():
-        return
-    if error is None:
-        done.set_result(None)
-    else:
-        done.set_exception(error)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import asyncio
 import re
+import sys
 import threading
 import time
 from pathlib import Path
@@ -275,12 +276,23 @@ async def test_ctrl_c_ends_the_timeline_thread_waiting_for_a_far_message_or_paus
         player = Player(reader, PlayOptions(), settings=_settings(core))
         run = asyncio.ensure_future(player.run_until_stopped())
         await wait_until(lambda: player.played == 1, what="the first message")
+        assert _in_timeline()
         if paused:
             player.pause()
         run.cancel()
         async with asyncio.timeout(10):
             await asyncio.gather(run, return_exceptions=True)
-    assert player.played == 1 and "bag-play-timeline" not in [thread.name for thread in threading.enumerate()]
+    assert player.played == 1 and not _in_timeline()
+
+
+def _in_timeline() -> bool:
+    """Whether some thread is running a player's timeline now."""
+    for frame in sys._current_frames().values():
+        while frame is not None:
+            if frame.f_code is Player._timeline.__code__:
+                return True
+            frame = frame.f_back  # type: ignore[assignment]
+    return False
 
 
 def test_a_stop_that_comes_just_before_the_timeline_waits_is_not_lost(core, tmp_path: Path) -> None:
