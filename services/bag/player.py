@@ -8,8 +8,9 @@ Each message is published as recorded, its frame untouched (``publish(frame)``),
 time relative to the first one played, divided by ``rate``. ``clock`` publishes ``/clock`` from
 the recording, so nodes with ``use_sim_time`` run on the recording's time: the recording's own
 ``/clock`` when it has one (the simulator's time, which its headers are stamped in), played even
-when ``topics`` leaves it out, else its receive times, at ``clock_hz``. ``pause()`` / ``resume()`` hold the timeline (the space bar
-does it in a terminal); a paused player publishes nothing, ``/clock`` included.
+when ``topics`` leaves it out, else its receive times, at ``clock_hz``. ``pause()`` /
+``resume()`` hold the timeline (the space bar does it in a terminal); a paused player publishes
+nothing, ``/clock`` included.
 """
 
 from __future__ import annotations
