@@ -8,8 +8,9 @@ Each message is published as recorded, its frame untouched (``publish(frame)``),
 time relative to the first one played, divided by ``rate``. ``clock`` publishes ``/clock`` from
 the recording, so nodes with ``use_sim_time`` run on the recording's time: the recording's own
 ``/clock`` when it has one (the simulator's time, which its headers are stamped in), played even
-when ``topics`` leaves it out, else its receive times, at ``clock_hz``. ``pause()`` / ``resume()`` hold the timeline (the space bar
-does it in a terminal); a paused player publishes nothing, ``/clock`` included.
+when ``topics`` leaves it out, else its receive times, at ``clock_hz``. ``pause()`` /
+``resume()`` hold the timeline (the space bar does it in a terminal); a paused player publishes
+nothing, ``/clock`` included.
 """
 
 from __future__ import annotations
@@ -122,15 +123,13 @@ class Player(Node):
         self._clock_publisher: Publisher[Time] | None = None
         if options.clock and CLOCK_TOPIC not in self.topics.values():
             self._clock_publisher = self.create_publisher(Time, CLOCK_TOPIC, 10)
-        # Shared with the timeline thread: events it waits on, the pause total it reads.
-        self._unpaused = threading.Event()
-        self._unpaused.set()
+        # Shared with the timeline thread: what it waits on, and the pause state it reads.
         self._wake = threading.Event()  # a pause, resume or stop: the thread looks again
         self._ending = threading.Event()
         self._in_flight = threading.Semaphore(_IN_FLIGHT)
         self._held: list[tuple[BagMessage, float]] = []  # handed over just as a pause came
-        self._paused_s = 0.0
-        self._paused_at: float | None = None
+        self._paused_s = 0.0  # the pauses so far, in total
+        self._paused_at: float | None = None  # when the pause in progress began
         self._base: tuple[int, float] | None = None  # (log time, perf_counter) of the first played
         self._position_ns = summary.start_ns
         self._task: asyncio.Task[None] | None = None
@@ -148,23 +147,21 @@ class Player(Node):
 
     @property
     def paused(self) -> bool:
-        return not self._unpaused.is_set()
+        return self._paused_at is not None
 
     def pause(self) -> None:
         if self.paused:
             return
         self._paused_at = time.perf_counter()
-        self._unpaused.clear()
         self._wake.set()
         self._say(f"[PAUSED]  at {self.position_s:.3f} s of {self.reader.summary.duration_s:.3f} s (space resumes)")
 
     def resume(self) -> None:
-        if not self.paused:
+        paused_at = self._paused_at
+        if paused_at is None:
             return
-        if self._paused_at is not None:
-            self._paused_s += time.perf_counter() - self._paused_at
-            self._paused_at = None
-        self._unpaused.set()
+        self._paused_s += time.perf_counter() - paused_at  # before paused turns False: the thread reads both
+        self._paused_at = None
         self._wake.set()
         self._say(f"[RUNNING] from {self.position_s:.3f} s")
         held, self._held = self._held, []
@@ -197,16 +194,14 @@ class Player(Node):
         try:
             if self.options.wait_for_subscribers:
                 await self._wait_for_subscribers()
-            loop = asyncio.get_running_loop()
-            done: asyncio.Future[None] = loop.create_future()
-            timeline = threading.Thread(target=self._timeline, args=(loop, done), name="bag-play-timeline", daemon=True)
-            timeline.start()
+            timeline = asyncio.ensure_future(asyncio.to_thread(self._timeline, asyncio.get_running_loop()))
             try:
-                await asyncio.shield(done)
+                await asyncio.shield(timeline)
             finally:
                 self._ending.set()
-                self._wake.set()
-                await asyncio.shield(done)  # the thread reads the file: it ends before the file is closed
+                self._wake.set()  # out of _wait_until
+                self._in_flight.release()  # out of _in_flight_slot
+                await asyncio.shield(timeline)  # the thread reads the file: it ends before the file is closed
         finally:
             self.destroy_node()
 
@@ -231,17 +226,12 @@ class Player(Node):
     # due with the OS's high-resolution timer, and only then hands it to the loop, whose part
     # is just the write (``publish(frame)``). The loop is never blocked by the waiting.
 
-    def _timeline(self, loop: asyncio.AbstractEventLoop, done: asyncio.Future[None]) -> None:
-        error: BaseException | None = None
-        try:
-            start_ns = self.reader.summary.start_ns + int(self.options.start_offset_s * 1e9)
-            while not self._ending.is_set():
-                self._timeline_once(loop, start_ns)
-                if not self.options.loop:
-                    break
-        except BaseException as caught:  # handed to the loop, which raises it in _play
-            error = caught
-        loop.call_soon_threadsafe(_settle, done, error)
+    def _timeline(self, loop: asyncio.AbstractEventLoop) -> None:
+        start_ns = self.reader.summary.start_ns + int(self.options.start_offset_s * 1e9)
+        while not self._ending.is_set():
+            self._timeline_once(loop, start_ns)
+            if not self.options.loop:
+                break
 
     def _timeline_once(self, loop: asyncio.AbstractEventLoop, start_ns: int) -> None:
         self._base = None
@@ -258,26 +248,26 @@ class Player(Node):
     def _wait_until(self, due_s: float) -> bool:
         """Sleep until ``due_s`` on the playback timeline (it stands still while paused); False
         if the player is stopping. Woken early by pause, resume and stop."""
-        while not self._ending.is_set():
+        while True:
+            self._wake.clear()  # before looking: a pause, resume or stop from here on ends the wait below
+            if self._ending.is_set():
+                return False
             if self.paused:
-                self._unpaused.wait(0.1)
+                self._wake.wait()
                 continue
             delay_s = due_s + self._paused_s - time.perf_counter()
             if delay_s <= 0:
                 return True
             if delay_s > _FINE_S:
-                self._wake.clear()
                 self._wake.wait(delay_s - _FINE_S)
             else:
                 time.sleep(delay_s)  # clock_nanosleep: within ~0.1 ms when the thread is scheduled
-        return False
 
     def _in_flight_slot(self) -> bool:
-        """Wait until the loop has room for one more message (a burst never piles up in it)."""
-        while not self._in_flight.acquire(timeout=0.1):
-            if self._ending.is_set():
-                return False
-        return True
+        """Wait until the loop has room for one more message (a burst never piles up in it);
+        False if the player is stopping."""
+        self._in_flight.acquire()
+        return not self._ending.is_set()
 
     def _publish(self, message: BagMessage, due_s: float) -> None:
         """On the loop: the write of one message that is due (held if paused meanwhile)."""
@@ -298,12 +288,3 @@ class Player(Node):
         now_ns = self._base[0] + int(elapsed_s * self.options.rate * 1e9)
         sec, nanosec = divmod(max(now_ns, self._position_ns), 1_000_000_000)
         self._clock_publisher.publish(Time(sec=sec, nanosec=nanosec))
-
-
-def _settle(done: asyncio.Future[None], error: BaseException | None) -> None:
-    if done.done():
-        return
-    if error is None:
-        done.set_result(None)
-    else:
-        done.set_exception(error)

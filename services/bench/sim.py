@@ -8,7 +8,8 @@ of sim time, boxes 10 Hz, state 5 Hz; robot: odom, bump, tf and clock 30 Hz, sca
 message) at both ends of a window after the world has settled: once with nobody subscribed,
 once with a subscriber node reading ``/drone/pose`` (drone) or ``/scan`` (robot); and, with
 the subscriber, per second of the simulator process's CPU time (/proc), which a loaded machine
-does not change. The references
+changes far less than the wall-clock figure (not at all only in theory: caches and cores are
+shared too; docs/performance.md has runs at load 5-7). The references
 are :func:`sim_server.speed.measure`'s bare ``stepSimulation`` loop and
 :func:`sim_server.robot.speed.measure`'s bare loop casting the same rays, each in its own process.
 """

@@ -8,8 +8,8 @@ every minute), and a reconnecting client opens and closes a socket every few hun
 Every process's RSS (the core and each node) is sampled every few seconds; the first fifth of
 the run is warm-up. The result: each process's RSS at the end against its value after warm-up
 (within 10% passes) and the slope of a least-squares line through the samples (MiB/minute);
-the row ``soak_rss_slope`` is the steepest of those slopes (passes if its line grows less than
-10% of that process's RSS over the run).
+the row ``soak_rss_slope`` is the slope of the process whose line grows most over the run as a
+share of its RSS (passes under 10%).
 """
 
 from __future__ import annotations
@@ -140,8 +140,7 @@ def _node_pids(core_url: str) -> dict[str, int]:
 def _summarise(samples: dict[str, list[tuple[float, float]]], duration_s: float, counters: dict[str, int]) -> list[Result]:
     results = []
     warm_s = duration_s * _WARMUP_FRACTION
-    # The steepest growth: each process's fitted slope over the measured span, as a share of its RSS.
-    steepest: tuple[float, str, float, float] | None = None  # (growth, process, slope, rss)
+    fits: list[tuple[float, str, float, float]] = []  # (fitted growth over the run, process, slope, RSS)
     for name, points in samples.items():
         warm = [(t, v) for t, v in points if t >= warm_s]
         if not warm:
@@ -154,11 +153,9 @@ def _summarise(samples: dict[str, list[tuple[float, float]]], duration_s: float,
                    target="within 10%", met=0.9 <= growth <= 1.1,
                    detail={"slope_mib_per_min": slope, "samples": len(points), **counters})
         )  # fmt: skip
-        fitted_growth = slope * (warm[-1][0] - warm[0][0]) / 60 / after_warmup
-        if steepest is None or fitted_growth > steepest[0]:
-            steepest = (fitted_growth, name, slope, after_warmup)
-    if steepest is not None:
-        fitted_growth, name, slope, rss = steepest
+        fits.append((slope * (warm[-1][0] - warm[0][0]) / 60 / after_warmup, name, slope, after_warmup))
+    if fits:
+        fitted_growth, name, slope, rss = max(fits)
         results.append(
             Result("soak_rss_slope", slope, "MiB/min", reference=f"{name} after warm-up (MiB)", reference_value=rss,
                    target="the steepest process grows < 10% over the run (fitted line)", met=fitted_growth < 0.1,

@@ -50,9 +50,10 @@ class RobotSpeedReading:
 
 
 def measure(*, seed: int = 1, robots: int = 1, steps: int = 4800, repeats: int = 3) -> RobotSpeedReading:
-    """Best of ``repeats`` runs of ``steps`` steps for the world and for the bare loop."""
-    world = [_world_rate(seed, robots, steps) for _ in range(repeats)]
-    bare = [_bare_rate(seed, robots, steps) for _ in range(repeats)]
+    """Best of ``repeats`` runs of ``steps`` steps for the world and for the bare loop (taken in
+    turns, so that a spell of load on the machine falls on both)."""
+    runs = [(_world_rate(seed, robots, steps), _bare_rate(seed, robots, steps)) for _ in range(repeats)]
+    world, bare = [w for w, _ in runs], [b for _, b in runs]
     return RobotSpeedReading(
         world_steps_per_s=max(r.steps_per_s for r in world),
         bare_steps_per_s=max(r.steps_per_s for r in bare),

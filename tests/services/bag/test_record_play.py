@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import asyncio
 import re
+import sys
+import threading
 import time
 from pathlib import Path
 
@@ -263,3 +265,52 @@ async def test_a_message_handed_over_as_a_pause_comes_waits_for_the_resume(core,
         assert player.played == 0
         player.resume()
         assert player.played == 1 and player.position_s == 0.0
+
+
+@pytest.mark.parametrize("paused", [False, True], ids=["waiting", "paused"])
+async def test_ctrl_c_ends_the_timeline_thread_waiting_for_a_far_message_or_paused(core, tmp_path: Path, paused: bool) -> None:
+    """The next message is 1,000 s away; cancelling the player (Ctrl-C) wakes its timeline thread,
+    which ends (it reads the file) before the player does."""
+    path = make_bag(tmp_path / "run.mcap", count=2, period_ns=1000 * 10**9)
+    with BagReader(path) as reader:
+        player = Player(reader, PlayOptions(), settings=_settings(core))
+        run = asyncio.ensure_future(player.run_until_stopped())
+        await wait_until(lambda: player.played == 1, what="the first message")
+        assert _in_timeline()
+        if paused:
+            player.pause()
+        run.cancel()
+        async with asyncio.timeout(10):
+            await asyncio.gather(run, return_exceptions=True)
+    assert player.played == 1 and not _in_timeline()
+
+
+def _in_timeline() -> bool:
+    """Whether some thread is running a player's timeline now."""
+    for frame in sys._current_frames().values():
+        while frame is not None:
+            if frame.f_code is Player._timeline.__code__:
+                return True
+            frame = frame.f_back  # type: ignore[assignment]
+    return False
+
+
+def test_a_stop_that_comes_just_before_the_timeline_waits_is_not_lost(core, tmp_path: Path) -> None:
+    """The thread clears its wake-up before it looks at the player's state, so a stop (or a pause)
+    that lands between its look and its wait still ends the wait, however far off the message is."""
+    path = make_bag(tmp_path / "run.mcap", count=3)
+    with BagReader(path) as reader:
+        player = Player(reader, PlayOptions(), settings=_settings(core))
+
+        class StopJustBeforeClear(threading.Event):
+            def clear(self) -> None:
+                player._ending.set()  # what stop does: ending, then the wake-up
+                self.set()
+                super().clear()
+
+        player._wake = StopJustBeforeClear()
+        result: list[bool] = []
+        waiting = threading.Thread(target=lambda: result.append(player._wait_until(time.perf_counter() + 1000)), daemon=True)
+        waiting.start()
+        waiting.join(timeout=10)
+    assert result == [False]
