@@ -265,7 +265,8 @@ export class View3D {
   snapshot({ statsFrames } = {}) {
     return {
       shown: this.scene.shown,
-      fixedFrame: this.effectiveFixedFrame(),
+      // The frame the last drawn frame used: a new choice shows here once it is drawn in.
+      fixedFrame: this.fixedFrame ?? this.effectiveFixedFrame(),
       fixedFrameChoice: this.fixedFrameChoice,
       globalStatus: this.globalStatus(),
       frames: this.tf.snapshot(),
