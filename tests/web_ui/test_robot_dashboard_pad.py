@@ -56,6 +56,11 @@ def test_the_pad_drives_the_robot_picked_and_only_that_one(dashboard, room: Syst
     page.wait_for_function(
         "window.skydeck.sockets().some(s => s.topic === '/robot2/cmd_vel' && s.state === 'open')", timeout=10_000
     )
+    # A right click on a key is not a press: nothing held, nothing sent.
+    sent = page.evaluate("window.skydeck.teleop")["sent"]
+    page.locator("#teleop-keys kbd[data-key=up]").click(button="right")
+    assert page.evaluate("window.skydeck.teleop")["held"] == []
+    assert page.evaluate("window.skydeck.teleop")["sent"] == sent
     start_x, start_y = ROBOT_STARTS_M[1]
     _hold(page, "up")
     held = page.evaluate("window.skydeck.teleop")

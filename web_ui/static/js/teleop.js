@@ -142,6 +142,7 @@ export class Teleop {
   _pad(event, down) {
     const key = event.target instanceof Element ? event.target.closest("kbd[data-key]") : null;
     if (!this.enabled || !key || !this.keysView.contains(key)) return;
+    if (down && event.button !== 0) return; // only the primary button (or a touch) presses a key
     event.preventDefault();
     if (key.dataset.key === "stop") {
       if (down) this._releaseAll();
