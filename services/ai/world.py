@@ -8,8 +8,13 @@ tracker ties the two together:
   ``SETTLED_TOLERANCE_M`` (a plan, or saved progress, made on falling boxes would be wrong);
 - when the world changes under a running AI, box messages of the old world may still be on their
   way through perception. The new world's boxes are dropped from 4-8 m, so they are accepted
-  only once a message differs from the last one of the old world (its boxes falling): an old
-  world's boxes are never taken for the new one's, even when the same seed builds the same boxes.
+  only once a message differs from where the old world's boxes first came to rest (its boxes
+  falling): an old world's boxes are never taken for the new one's, even when the same seed
+  builds the same boxes;
+- two topics are not ordered one against the other: an AI that was slow to read (a loaded
+  machine) may hear the new world's boxes, even at rest, before the world message. Box messages
+  heard before it that differ from where the old world's boxes first came to rest are kept as
+  the new world's (the drone flies above the boxes: a world's boxes do not move once at rest).
 """
 
 from __future__ import annotations
@@ -37,6 +42,7 @@ class WorldTracker:
         self.boxes: list[tuple[float, float]] = []
         self.ready = asyncio.Event()
         self._recent: list[Boxes3] = []
+        self._first_at_rest: Boxes3 | None = None  # this world's boxes, where they first came to rest
         self._old_world_boxes: Boxes3 | None = None
 
     def on_world(self, msg: SimWorld) -> bool:
@@ -47,11 +53,12 @@ class WorldTracker:
         changed = self.world is not None
         self.world = msg
         if changed:
-            self._old_world_boxes = self._recent[-1] if self._recent else None
-            self._recent.clear()
-            self.ready.clear()
-        else:
-            self._judge()  # boxes heard before the first world message are this world's
+            old = self._first_at_rest or (self._recent[-1] if self._recent else None)
+            self._recent = [b for b in self._recent if old is None or not _agree(b, old)]
+            self._first_at_rest = None
+            # Once a new world's message was heard, perception sends no more of the old one's.
+            self._old_world_boxes = None if self._recent else old
+        self._judge()  # boxes heard before the world message are this world's
         return changed
 
     def on_boxes(self, msg: Polygon) -> None:
@@ -68,6 +75,8 @@ class WorldTracker:
         recent = self._recent
         if self.world is not None and len(recent) >= SETTLED_MESSAGES and all(_agree(b, recent[0]) for b in recent[1:]):
             self.boxes = [(x, y) for x, y, _ in recent[-1]]
+            if self._first_at_rest is None:
+                self._first_at_rest = recent[-1]
             self.ready.set()
         else:
             self.ready.clear()

@@ -111,15 +111,22 @@ async def test_a_reset_mid_mission_starts_a_new_tour_over_the_new_boxes(launch, 
     system = await launch("--speed", "10", "--seed", "9", "--boxes", "4")
     old_boxes = await box_positions(system, 4)
     old_world = await _world_id(system)
+    pid = await _ai_pid(system)
     await system.messages("/ai/status", lambda m: len(m["visited"]) >= 1, 120)
+    # The AI is held while the terminal's command starts (seconds on a loaded machine, in which
+    # a 10x tour could finish), so the reset lands mid-tour however slow the machine.
+    os.kill(pid, signal.SIGSTOP)
     mark = len(system.lines)
-    # The way a user resets from a terminal (the dashboard's button calls the same service).
-    reset = await asyncio.create_subprocess_exec(
-        sys.executable, "-m", "services.cli", "service", "call", "/simulator/reset",
-        env={**os.environ, "SKYDECK_CORE_URL": system.core_url},
-        stdout=asyncio.subprocess.PIPE, stderr=asyncio.subprocess.STDOUT,
-    )  # fmt: skip
-    output, _ = await asyncio.wait_for(reset.communicate(), 30)
+    try:
+        # The way a user resets from a terminal (the dashboard's button calls the same service).
+        reset = await asyncio.create_subprocess_exec(
+            sys.executable, "-m", "services.cli", "service", "call", "/simulator/reset",
+            env={**os.environ, "SKYDECK_CORE_URL": system.core_url},
+            stdout=asyncio.subprocess.PIPE, stderr=asyncio.subprocess.STDOUT,
+        )  # fmt: skip
+        output, _ = await asyncio.wait_for(reset.communicate(), 30)
+    finally:
+        os.kill(pid, signal.SIGCONT)
     assert reset.returncode == 0, output
     new_world = await _world_id(system)
     assert new_world != old_world and new_world in output.decode()

@@ -51,6 +51,21 @@ def test_a_rebuilt_world_of_the_same_seed_waits_for_its_own_boxes() -> None:
     assert tracker.ready.is_set() and tracker.world is not None and tracker.world.id == "b"
 
 
+def test_a_new_worlds_boxes_heard_before_its_world_message_are_its_own() -> None:
+    """Topics are not ordered one against another: an AI slow to read (a loaded machine) may
+    hear a reset's new boxes, fallen and at rest, before the world message; they are the new
+    world's, not the old one's in flight."""
+    tracker = WorldTracker()
+    tracker.on_world(SimWorld(id="a"))
+    _settle(tracker, (5.0, 5.0), (-6.0, 7.0))
+    tracker.on_boxes(_boxes((1.0, 2.0), (3.0, 4.0), z=6.0))  # the reset's boxes, falling
+    _settle(tracker, (1.0, 2.0), (3.0, 4.0))  # and at rest
+    assert tracker.on_world(SimWorld(id="b")) is True
+    assert tracker.ready.is_set() and tracker.boxes == [(1.0, 2.0), (3.0, 4.0)]
+    tracker.on_boxes(_boxes((1.0, 2.0), (3.0, 4.0)))
+    assert tracker.ready.is_set() and tracker.world is not None and tracker.world.id == "b"
+
+
 def test_a_world_without_boxes_is_ready_at_once() -> None:
     tracker = WorldTracker()
     tracker.on_world(SimWorld(id="a", boxes=0))
