@@ -8,8 +8,9 @@ leg on its own counts too, since one leg often hides the other. It takes the nea
 that moved since the last scan (people walk; a box's corner that looks like a leg does not),
 then follows the one nearest to where its person was last seen (in the odom frame, so the
 robot's own motion does not confuse it): it turns towards the person and drives to keep
-``distance`` metres from them, slower while the person is off to the side. A person lost for
-more than a second makes it stop and turn the way they were last seen.
+``distance`` metres from them (backing away from a person who walks at it), slower while the
+person is off to the side. A person lost for more than a second makes it stop and turn the way
+they were last seen.
 
     skydeck run person_follower --ros-args -p distance:=0.8
 """
@@ -105,7 +106,8 @@ class PersonFollower:
         self.state = "following"
         gap = pose.distance_to(*self.target) - self.distance
         turn = max(-_MAX_TURN, min(_MAX_TURN, _TURN_GAIN * bearing))
-        speed = max(0.0, min(self.speed, _SPEED_GAIN * gap)) * max(0.0, math.cos(bearing))
+        # Too near (the person walked at it): back away, as fast as it may drive forward.
+        speed = max(-self.speed, min(self.speed, _SPEED_GAIN * gap)) * max(0.0, math.cos(bearing))
         return speed, turn
 
     def _moved(self, p: tuple[float, float]) -> bool:

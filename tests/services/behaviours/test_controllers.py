@@ -132,7 +132,9 @@ def test_the_person_follower_takes_a_walking_person_and_keeps_its_distance() -> 
     assert follower.state == "following" and v > 0 and w > 0
     close = PersonFollower(distance=0.8, speed=0.3)
     close.update(scan_of(*legs(0.6, 0.0)), here, 0.0)
-    assert close.update(scan_of(*legs(0.65, 0.0)), here, 0.2)[0] == 0.0  # near enough: it waits
+    assert close.update(scan_of(*legs(0.65, 0.0)), here, 0.2)[0] < 0.0  # too near: it backs away
+    # Legs whose near sides the laser sees 0.8 m away: at its distance, it holds still.
+    assert close.update(scan_of(*legs(0.88, 0.0)), here, 0.4)[0] == pytest.approx(0.0, abs=0.02)
     v, w = close.update(scan_of(), here, 2.0)  # gone: it stops and turns where they were
     assert v == 0.0 and abs(w) == pytest.approx(0.6)
     assert close.state == "lost"
