@@ -90,12 +90,24 @@ async def test_record_the_mission_then_play_it_into_a_fresh_core(launch, tmp_pat
         )
         assert await asyncio.to_thread(recorder.stop), recorder.tail()  # Ctrl-C: the file is finished
         assert recorder.returncode == 0, recorder.tail()
-        await asyncio.sleep(0.5)  # the counter outlives the recorder: its run covers the file's
+        # The counter outlives the recorder: keep it until its run covers the file's, every topic.
+        bag_file = path.with_suffix(".mcap")
+        with BagReader(bag_file) as bag:
+            in_file = {t.topic: [m.frame for m in bag.messages([t.topic])] for t in bag.summary.topics}
+        covered: set[str] = set()  # a run once found stays found: the counter only appends
+
+        def uncovered() -> list[str]:
+            covered.update(t for t, frames in in_file.items() if t not in covered and contiguous_run(frames, counter.texts(t)))
+            return sorted(in_file.keys() - covered)
+
+        try:
+            await wait_until(lambda: not uncovered(), timeout_s=30, what="the counter to receive what the file holds")
+        except AssertionError as error:
+            raise AssertionError(f"{error}: the file is not a run of what was received on {uncovered()}") from None
     finally:
         recorder.stop()
         await counter.stop()
     assert not any("Traceback" in line for line in recorder.lines), recorder.tail()
-    bag_file = path.with_suffix(".mcap")
 
     # `bag info` counts = the counter's counts over the same span; the same frames, in order.
     info = skydeck("bag", "info", str(bag_file), core_url=system.core_url, name="info")

@@ -35,7 +35,8 @@ async def test_ctrl_c_finishes_the_file_and_info_prints_it(core, start_node, tmp
             while talker.publisher.get_subscription_count() < 1 or talker.strings.get_subscription_count() < 1:
                 await asyncio.sleep(0.02)
         talker.send(100)
-        await asyncio.sleep(0.2)  # the frames are on their way; then Ctrl-C
+        # All 100 on disk (the recorder flushes a chunk every second), then Ctrl-C.
+        await wait_until(lambda: recorded(tmp_path / "run.mcap", "/points") == 100, timeout_s=20, what="100 messages on disk")
         assert await asyncio.to_thread(process.stop, signal.SIGINT, 20)
     finally:
         process.stop()
