@@ -31,10 +31,12 @@ def test_the_camera_shows_jpeg_and_raw_frames_read_in_msgpack(dashboard) -> None
     page.wait_for_function("window.skydeck.camera.frames > 2", timeout=30_000)
     jpeg = _socket(page, "/simulator/camera")
     assert jpeg["encoding"] == "msgpack" and jpeg["binaryFrames"] >= 3  # the core agreed to msgpack
-    image = page.evaluate(
+    # A frame is counted when its Blob URL is set; the <img> decodes it later: wait for that.
+    image = page.wait_for_function(
         "(() => { const i = document.getElementById('camera-image');"
-        " return {src: i.src, width: i.naturalWidth, height: i.naturalHeight, hidden: i.hidden}; })()"
-    )
+        " return i.naturalWidth > 0 && {src: i.src, width: i.naturalWidth, height: i.naturalHeight, hidden: i.hidden}; })()",
+        timeout=30_000,
+    ).json_value()
     assert image["src"].startswith("blob:") and (image["width"], image["height"]) == (640, 480)
     assert not image["hidden"]
 

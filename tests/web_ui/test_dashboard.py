@@ -132,6 +132,11 @@ def test_take_off_button_makes_the_drone_climb(dashboard) -> None:  # type: igno
     page, _ = dashboard
     page.click("#takeoff")
     page.wait_for_function("window.skydeck.pose.z > 1.0", timeout=30_000)
+    # The drone can climb before the answer reaches the page: wait for the answer too.
+    page.wait_for_function(
+        "() => { const r = window.skydeck.lastCommand; return r && r.service === '/control/take_off' && r.kind !== 'pending'; }",
+        timeout=10_000,
+    )
     assert page.get_attribute("#command-result", "data-kind") == "success"
     assert page.get_attribute("#command-result", "data-service") == "/control/take_off"
     page.wait_for_function("window.skydeck.pose.z > 2.5", timeout=30_000)

@@ -164,8 +164,12 @@ def test_tf_display_draws_each_frame_with_its_name(dashboard) -> None:  # type: 
 def test_odometry_arrow_and_trail(dashboard) -> None:  # type: ignore[no-untyped-def]
     page, _ = dashboard
     add_by_topic(page, "/odom")
-    d = wait_display(page, "/odom", "d.objects === 1 && d.trail > 10")
-    robot_at = view(page)["world"]["robot"]["robot"]
+    # The arrow and the robot from one snapshot: the robot drives on between two.
+    v = wait_view(
+        page, "v.displays.some((d) => d.topic === '/odom' && d.objects === 1 && d.trail > 10)"
+    )
+    d = next(x for x in v["displays"] if x["topic"] == "/odom")
+    robot_at = v["world"]["robot"]["robot"]
     assert math.dist(d["points"][0][:2], robot_at[:2]) < 0.05, (
         "the arrow is where TF puts base_link"
     )
@@ -282,11 +286,12 @@ def test_the_grid_and_the_fixed_frames_axes(dashboard) -> None:  # type: ignore[
     # A change made just before the page goes (the save waits a moment after each change) is
     # still kept: the box ticked and the reload started in the same task, so only the save on
     # pagehide can have written it.
-    page.evaluate(
-        """() => {
-        document.querySelector('#view3d-displays li[data-display=grid] [data-action=visible]').click();
-        location.reload();
-    }"""
-    )
+    with page.expect_navigation():  # else open_3d could read the old page before it goes
+        page.evaluate(
+            """() => {
+            document.querySelector('#view3d-displays li[data-display=grid] [data-action=visible]').click();
+            location.reload();
+        }"""
+        )
     open_3d(page)
     assert wait_view(page, "v.fixedFrame === 'base_link'")["grid"] is True

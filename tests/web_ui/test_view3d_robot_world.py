@@ -12,7 +12,7 @@ from __future__ import annotations
 import json
 import math
 import threading
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import pytest
@@ -60,9 +60,12 @@ def room(system: System) -> dict[str, float]:
 
 
 @pytest.fixture
-def scans(system: System) -> Iterator[dict[float, dict[str, object]]]:
-    """The /scan messages of the last seconds, by stamp (seconds), read as any client would."""
+def scans(system: System) -> Iterator[Callable[[float], dict[str, object] | None]]:
+    """The /scan messages of the last seconds, read as any client would: ``scans(stamp)`` is the
+    one taken at ``stamp`` (seconds), waited for a while (this reader can be behind the page's),
+    or None."""
     received: dict[float, dict[str, object]] = {}
+    arrived = threading.Condition()  # guards `received`, told of each message
     stop = threading.Event()
 
     def read() -> None:
@@ -73,13 +76,24 @@ def scans(system: System) -> Iterator[dict[float, dict[str, object]]]:
                 except TimeoutError:
                     continue
                 stamp = msg["header"]["stamp"]
-                received[stamp["sec"] + stamp["nanosec"] * 1e-9] = msg
-                while len(received) > 100:
-                    received.pop(next(iter(received)))
+                with arrived:
+                    received[stamp["sec"] + stamp["nanosec"] * 1e-9] = msg
+                    while len(received) > 100:
+                        received.pop(next(iter(received)))
+                    arrived.notify_all()
+
+    def taken_at(stamp: float) -> dict[str, object] | None:
+        def match() -> dict[str, object] | None:
+            return next((msg for t, msg in received.items() if abs(t - stamp) < 1e-6), None)
+
+        with arrived:
+            return arrived.wait_for(match, timeout=10)
 
     thread = threading.Thread(target=read, daemon=True)
     thread.start()
-    yield received
+    with arrived:  # read from before the page draws the scans matched with these
+        assert arrived.wait_for(lambda: received, timeout=20), "no /scan for the test to read"
+    yield taken_at
     stop.set()
     thread.join(timeout=5)
 
@@ -88,7 +102,11 @@ def scans(system: System) -> Iterator[dict[float, dict[str, object]]]:
 def dashboard(system: System, browser: object) -> Iterator[tuple[object, object]]:
     with open_dashboard(browser, system.url, "window.skydeck !== undefined") as (page, recorder):
         open_3d(page)
-        wait_view(page, "v.world.robot.present && v.world.robot.obstacles.length >= 4")
+        # All four frames: with /tf in before /tf_static, the default fixed frame is odom for a while.
+        wait_view(
+            page,
+            "v.frames.length >= 4 && v.world.robot.present && v.world.robot.obstacles.length >= 4",
+        )
         yield page, recorder
 
 
@@ -121,9 +139,9 @@ def test_scan_by_topic_reaches_the_wall_then_rides_with_the_robot(dashboard, sca
         v = view(page)
         assert v["world"]["robot"]["robot"] == [0, 0, 0], "in base_link the robot is at the origin"
         laser_z = v["world"]["robot"]["laser"][2]
-        match = min(scans, key=lambda t: abs(t - stamp))
-        assert abs(match - stamp) < 1e-6, "the drawn scan is one the simulator published"
-        expected = beam_points(scans[match], laser_z)
+        published = scans(stamp)
+        assert published is not None, "the drawn scan is one the simulator published"
+        expected = beam_points(published, laser_z)
         assert len(drawn["points"]) == len(expected)
         worst = max(math.dist(a, b) for a, b in zip(drawn["points"], expected, strict=True))
         assert worst < 2e-3, f"a point is {worst:.4f} m from where its range puts it"

@@ -15,9 +15,12 @@ WAIT_MS = 20_000
 
 def open_3d(page: Any) -> None:
     """Click the 3D tab and wait until the view has loaded and drawn a frame."""
+    # After a (re)load, main.js wires the tabs and sets window.skydeck only once config.js's
+    # top-level await is over, which can be after the load event: a click before is lost.
+    page.wait_for_function("window.skydeck !== undefined", timeout=WAIT_MS)
     page.click("[data-tab=view3d]")
     page.wait_for_function(
-        "(() => { const v = window.skydeck.view3d(); return v && v.shown && v.frameStats.rendered > 0; })()",
+        "(() => { const v = window.skydeck && window.skydeck.view3d(); return v && v.shown && v.frameStats.rendered > 0; })()",
         timeout=WAIT_MS,
     )
 
@@ -26,35 +29,26 @@ def view(page: Any) -> dict[str, Any]:
     return page.evaluate("window.skydeck.view3d()")  # type: ignore[no-any-return]
 
 
-def display(page: Any, topic: str) -> dict[str, Any] | None:
-    for d in view(page)["displays"]:
-        if d["topic"] == topic:
-            return d  # type: ignore[no-any-return]
-    return None
-
-
 def wait_view(page: Any, condition: str, timeout_ms: int = WAIT_MS) -> dict[str, Any]:
-    """Wait until ``condition`` (JS, with ``v`` the view's snapshot) holds; returns the snapshot."""
-    page.wait_for_function(
-        f"(() => {{ const v = window.skydeck.view3d(); return !!v && ({condition}); }})()",
+    """Wait until ``condition`` (JS, with ``v`` the view's snapshot) holds; returns that snapshot
+    (not a later one, in which the condition may no longer hold)."""
+    return page.wait_for_function(  # type: ignore[no-any-return]
+        f"(() => {{ const v = window.skydeck && window.skydeck.view3d(); return !!v && ({condition}) ? v : null; }})()",
         timeout=timeout_ms,
-    )
-    return view(page)
+    ).json_value()
 
 
 def wait_display(
     page: Any, topic: str, condition: str, timeout_ms: int = WAIT_MS
 ) -> dict[str, Any]:
-    """Wait until the display of ``topic`` satisfies ``condition`` (JS, with ``d`` the display)."""
-    page.wait_for_function(
-        "(() => { const v = window.skydeck.view3d(); const d = v && v.displays.find((x) => x.topic === "
+    """Wait until the display of ``topic`` satisfies ``condition`` (JS, with ``d`` the display and
+    ``v`` the view's snapshot); returns the display as it was when the condition held."""
+    return page.wait_for_function(  # type: ignore[no-any-return]
+        "(() => { const v = window.skydeck && window.skydeck.view3d(); const d = v && v.displays.find((x) => x.topic === "
         + json.dumps(topic)
-        + f"); return !!d && ({condition}); }})()",
+        + f"); return !!d && ({condition}) ? d : null; }})()",
         timeout=timeout_ms,
-    )
-    found = display(page, topic)
-    assert found is not None
-    return found
+    ).json_value()
 
 
 def add_by_topic(page: Any, topic: str, color: str | None = None) -> None:
