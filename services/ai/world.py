@@ -52,18 +52,21 @@ class WorldTracker:
             return False
         changed = self.world is not None
         self.world = msg
+        heard, self._recent = self._recent, []
         if changed:
-            old = self._first_at_rest or (self._recent[-1] if self._recent else None)
-            self._recent = [b for b in self._recent if old is None or not _agree(b, old)]
+            at_rest = self._first_at_rest
+            self._old_world_boxes = at_rest if at_rest is not None else (heard[-1] if heard else None)
             self._first_at_rest = None
-            # Once a new world's message was heard, perception sends no more of the old one's.
-            self._old_world_boxes = None if self._recent else old
-        self._judge()  # boxes heard before the world message are this world's
+        for boxes in heard:  # boxes heard before the world message: this world's, past the gate
+            self._take(boxes)
+        self._judge()
         return changed
 
     def on_boxes(self, msg: Polygon) -> None:
         """Take a box message (perception's, in the simulator's order: indices are box ids)."""
-        boxes = [(p.x, p.y, p.z) for p in msg.points]
+        self._take([(p.x, p.y, p.z) for p in msg.points])
+
+    def _take(self, boxes: Boxes3) -> None:
         if self._old_world_boxes is not None:
             if _agree(boxes, self._old_world_boxes):
                 return  # still the old world's, on its way through perception
