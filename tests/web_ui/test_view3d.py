@@ -49,6 +49,7 @@ from tests.web_ui.view3d_page import (
     view,
     wait_display,
     wait_view,
+    wait_view_with_display,
 )
 
 pytestmark = [pytest.mark.browser, pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(120)]
@@ -204,8 +205,7 @@ def test_add_by_topic_lists_live_topics_with_a_display(dashboard) -> None:  # ty
         assert min(distance(point, b) for b in world_boxes) < 0.1, "a box's arrow is at its centre"
     add_by_topic(page, "/drone/pose")
     # The arrow and the drone from one snapshot: the drone may be moving between two.
-    v = wait_view(page, "v.displays.some((d) => d.topic === '/drone/pose' && d.objects === 1)")
-    pose = next(d for d in v["displays"] if d["topic"] == "/drone/pose")
+    v, pose = wait_view_with_display(page, "/drone/pose", "d.objects === 1")
     assert distance(pose["points"][0], v["world"]["drone"]["drone"]) < 0.3
     assert "/drone/pose" not in page.eval_on_selector_all(
         "#view3d-add-select option", "o => o.map(x => x.value)"

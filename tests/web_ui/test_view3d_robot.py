@@ -28,6 +28,7 @@ from tests.web_ui.view3d_page import (
     view,
     wait_display,
     wait_view,
+    wait_view_with_display,
 )
 
 pytestmark = [pytest.mark.browser, pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(120)]
@@ -165,10 +166,7 @@ def test_odometry_arrow_and_trail(dashboard) -> None:  # type: ignore[no-untyped
     page, _ = dashboard
     add_by_topic(page, "/odom")
     # The arrow and the robot from one snapshot: the robot drives on between two.
-    v = wait_view(
-        page, "v.displays.some((d) => d.topic === '/odom' && d.objects === 1 && d.trail > 10)"
-    )
-    d = next(x for x in v["displays"] if x["topic"] == "/odom")
+    v, d = wait_view_with_display(page, "/odom", "d.objects === 1 && d.trail > 10")
     robot_at = v["world"]["robot"]["robot"]
     assert math.dist(d["points"][0][:2], robot_at[:2]) < 0.05, (
         "the arrow is where TF puts base_link"

@@ -43,12 +43,22 @@ def wait_display(
 ) -> dict[str, Any]:
     """Wait until the display of ``topic`` satisfies ``condition`` (JS, with ``d`` the display and
     ``v`` the view's snapshot); returns the display as it was when the condition held."""
-    return page.wait_for_function(  # type: ignore[no-any-return]
-        "(() => { const v = window.skydeck && window.skydeck.view3d(); const d = v && v.displays.find((x) => x.topic === "
+    return wait_view_with_display(page, topic, condition, timeout_ms)[1]
+
+
+def wait_view_with_display(
+    page: Any, topic: str, condition: str, timeout_ms: int = WAIT_MS
+) -> tuple[dict[str, Any], dict[str, Any]]:
+    """As :func:`wait_display`, with the view's snapshot the display was taken from (to compare
+    the display with the world of the same moment)."""
+    v = wait_view(
+        page,
+        "(() => { const d = v.displays.find((x) => x.topic === "
         + json.dumps(topic)
-        + f"); return !!d && ({condition}) ? d : null; }})()",
-        timeout=timeout_ms,
-    ).json_value()
+        + f"); return !!d && ({condition}); }})()",
+        timeout_ms,
+    )
+    return v, next(d for d in v["displays"] if d["topic"] == topic)
 
 
 def add_by_topic(page: Any, topic: str, color: str | None = None) -> None:
