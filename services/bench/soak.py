@@ -132,9 +132,17 @@ def _node_pids(core_url: str) -> dict[str, int]:
     import httpx
 
     graph = httpx.get(core_url + "/api/graph", timeout=5).json()
-    pids = {node["name"]: node["pid"] for node in graph["nodes"] if not node["name"].startswith("/skydeck_core")}
-    pids["/skydeck_core"] = next(node["pid"] for node in graph["nodes"] if node["name"] == "/skydeck_core")
-    return pids
+    return _one_name_per_process(graph["nodes"])
+
+
+def _one_name_per_process(nodes: list[dict[str, Any]]) -> dict[str, int]:
+    """A name for each process of the graph: the core's nodes (/rosapi, ...) share its process,
+    which is measured once, as /skydeck_core; a process hosting several other nodes, by the first."""
+    names: dict[int, str] = {}
+    for node in nodes:
+        if node["name"] == "/skydeck_core" or node["pid"] not in names:
+            names[node["pid"]] = node["name"]
+    return {name: pid for pid, name in names.items()}
 
 
 def _summarise(samples: dict[str, list[tuple[float, float]]], duration_s: float, counters: dict[str, int]) -> list[Result]:

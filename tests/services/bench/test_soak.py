@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from services.bench.soak import _summarise
+from services.bench.soak import _one_name_per_process, _summarise
 
 
 def _line(start_mib: float, mib_per_min: float) -> list[tuple[float, float]]:
@@ -27,3 +27,15 @@ def test_a_flat_run_passes_and_warm_up_growth_does_not_count() -> None:
     rows = {r.name: r for r in _summarise({"/sim": warming, "/control": _line(40, 0.0)}, 600, {"frames": 7})}
     assert rows["soak_rss_slope"].met is True and rows["soak_rss_slope"].value == pytest.approx(0.0)
     assert rows["soak_rss_sim"].met is True and rows["soak_rss_sim"].detail["frames"] == 7
+
+
+def test_each_process_is_measured_once_and_the_core_by_its_own_name() -> None:
+    # /rosapi is served by the core's process: one row for that process, named /skydeck_core.
+    nodes = [
+        {"name": "/rosapi", "pid": 10},
+        {"name": "/skydeck_core", "pid": 10},
+        {"name": "/sim", "pid": 11},
+        {"name": "/ai", "pid": 12},
+        {"name": "/ai_helper", "pid": 12},
+    ]
+    assert _one_name_per_process(nodes) == {"/skydeck_core": 10, "/sim": 11, "/ai": 12}
