@@ -2,9 +2,10 @@
 
 What the participant publishes is serialised once per encoding its readers asked for (JSON text,
 msgpack); the frame goes to every reader's outbox and the message object to every local
-subscription, without copying. Frames from remote
-publishers (links) are parsed only when a local subscription needs the message, and go on as
-received to the taps (the core's gateway readers, who read everything on the topic).
+subscription, without copying. Frames from remote publishers (links; one may hold several
+messages, :mod:`~services.runtime.edge.batch`) are parsed only when a local subscription needs
+the message, and go on as received to the taps (the core's gateway readers, who read everything
+on the topic).
 
 As a :class:`~services.runtime.edge.TopicPort`, the endpoint is what a socket on the node's
 own ``ws://NODE/TOPIC`` talks to.
@@ -15,6 +16,7 @@ from __future__ import annotations
 import logging
 from typing import TYPE_CHECKING
 
+from services.runtime.edge import batch
 from services.runtime.edge.encoding import Frames, decode
 from services.runtime.edge.frames import FrameRejected, is_complete
 from services.runtime.edge.outbox import Frame, Outbox
@@ -105,8 +107,23 @@ class TopicEndpoint:
                 subscription.enqueue(msg)
 
     def receive_link_frame(self, frame: Frame) -> None:
-        """A frame from a remote publisher, as received: parsed only if someone here needs it."""
-        frames = Frames.received(frame, self.msg_type)
+        """A frame from a remote publisher, as received: parsed only if someone here needs it.
+
+        A link's frame may be a batch: each of its messages is delivered as if it had come
+        alone, in order."""
+        if not batch.is_batch(frame):
+            self._receive_from_link(Frames.received(frame, self.msg_type))
+            return
+        try:
+            messages = batch.split(frame)
+        except FrameRejected as error:
+            logger.warning("dropped a frame on %s: %s", self.name, error.reason)
+            return
+        made = Frames.received if isinstance(frame, str) else Frames.unpacked
+        for message in messages:
+            self._receive_from_link(made(message, self.msg_type))
+
+    def _receive_from_link(self, frames: Frames) -> None:
         self.latest = frames
         for tap in self.taps:
             tap.push(frames.get(tap.encoding))

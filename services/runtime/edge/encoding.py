@@ -91,6 +91,14 @@ def decode(frame: str | bytes, msg_type: type[Message], type_name: str) -> Messa
         raise FrameRejected(Close.INVALID_FRAME, f"not a msgpack {type_name}: {error}") from None
 
 
+def _validated(value: Any, msg_type: type[Message]) -> Message:
+    """A message unpacked from msgpack (one of a batch), validated into ``msg_type``."""
+    try:
+        return msg_type.__pydantic_validator__.validate_python(value)  # type: ignore[no-any-return]
+    except ValidationError as error:
+        raise FrameRejected(Close.INVALID_FRAME, describe_validation_error(msg_type.__ros_type__, error)) from None
+
+
 class Frames:
     """One message in every encoding its readers want, each made at most once.
 
@@ -98,7 +106,7 @@ class Frames:
     the type, if known, for converting it.
     """
 
-    __slots__ = ("_json", "_msg", "_packed", "_type")
+    __slots__ = ("_json", "_msg", "_packed", "_type", "_unpacked")
 
     def __init__(
         self,
@@ -112,6 +120,7 @@ class Frames:
         self._json = json_text
         self._packed = packed
         self._type = msg_type if msg_type is not None else type(msg) if msg is not None else None
+        self._unpacked: Any = None  # a message of a batch, unpacked but not validated
 
     @classmethod
     def received(cls, frame: str | bytes, msg_type: type[Message] | None) -> Frames:
@@ -120,6 +129,13 @@ class Frames:
             return cls(json_text=frame, msg_type=msg_type)
         return cls(packed=frame, msg_type=msg_type)
 
+    @classmethod
+    def unpacked(cls, value: Any, msg_type: type[Message] | None) -> Frames:
+        """The frames of one message of a batch (:mod:`.batch`), as unpacked from it."""
+        frames = cls(msg_type=msg_type)
+        frames._unpacked = value
+        return frames
+
     def get(self, encoding: Encoding) -> str | bytes:
         return self.json if encoding is Encoding.JSON else self.packed
 
@@ -127,7 +143,8 @@ class Frames:
     def json(self) -> str:
         if self._json is None:
             if self._msg is None and self._type is None:
-                self._json = _untyped_json(self._packed or b"")
+                unpacked = self._unpacked if self._unpacked is not None else ormsgpack.unpackb(self._packed or b"")
+                self._json = _untyped_json(unpacked)
             else:
                 self._json = self.message().model_dump_json()
         return self._json
@@ -135,7 +152,9 @@ class Frames:
     @property
     def packed(self) -> bytes:
         if self._packed is None:
-            if self._msg is None and self._type is None:
+            if self._unpacked is not None:
+                self._packed = ormsgpack.packb(self._unpacked)  # bytes stay bytes
+            elif self._msg is None and self._type is None:
                 # Without the type, base64 text cannot be told from a string: it stays text.
                 self._packed = ormsgpack.packb(json.loads(self._json or "null"))
             else:
@@ -147,17 +166,20 @@ class Frames:
         if self._msg is None:
             if self._type is None:
                 raise TypeError("a frame of an unknown type has no message")
+            if self._unpacked is not None:
+                self._msg = _validated(self._unpacked, self._type)
+                return self._msg
             source: str | bytes = self._json if self._json is not None else self._packed or b""
             self._msg = decode(source, self._type, self._type.__ros_type__)
         return self._msg
 
 
-def _untyped_json(packed: bytes) -> str:
-    """A msgpack frame of a type this process does not know, as JSON: byte arrays as standard
+def _untyped_json(unpacked: Any) -> str:
+    """A msgpack message of a type this process does not know, as JSON: byte arrays as standard
     base64 (as the models write them), so a browser can still put a JPEG in a data: URL."""
     # The C encoder calls _base64 for the byte arrays it meets: no walk of the value in Python
     # first (that walk was a third of this function's time in the core; docs/performance.md).
-    return json.dumps(ormsgpack.unpackb(packed), default=_base64, separators=(",", ":"), allow_nan=False)
+    return json.dumps(unpacked, default=_base64, separators=(",", ":"), allow_nan=False)
 
 
 def _base64(value: Any) -> str:

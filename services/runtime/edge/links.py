@@ -2,7 +2,8 @@
 
 The link reconnects by itself (short backoff) when the publisher goes away and comes back,
 which is how node-to-node streams survive a publisher restart or a missing core. Nodes link
-in msgpack (:mod:`.encoding`): cheaper to make and to read than JSON, byte arrays as bytes.
+in msgpack (:mod:`.encoding`): cheaper to make and to read than JSON, byte arrays as bytes; and every
+link asks for batches (:mod:`.batch`), so a frame may hold several messages.
 """
 
 from __future__ import annotations
@@ -35,7 +36,8 @@ def stream_url(base_url: str, topic: str, **query: object) -> str:
 
 
 class PublisherLink:
-    """Reads one publisher's stream of ``topic`` and hands every frame to ``on_frame``."""
+    """Reads one publisher's stream of ``topic`` and hands every frame to ``on_frame`` (which
+    may be a batch of several messages)."""
 
     def __init__(
         self,
@@ -51,7 +53,8 @@ class PublisherLink:
         encoding: Encoding = Encoding.MSGPACK,
     ) -> None:
         self.topic = topic
-        self.url = stream_url(publisher_url, topic, queue=queue_size)
+        # Links take batches: a publisher's burst costs one frame (services.runtime.edge.batch).
+        self.url = stream_url(publisher_url, topic, queue=queue_size, batch=1)
         self._subprotocols = [Subprotocol(encoding.subprotocol)]
         self._on_frame = on_frame
         self._max_message_bytes = max_message_bytes

@@ -1,4 +1,4 @@
-"""A topic socket's options, from its query string: ``?queue=N&rate=HZ&mode=publish``."""
+"""A topic socket's options, from its query string: ``?queue=N&rate=HZ&mode=publish&batch=1``."""
 
 from __future__ import annotations
 
@@ -27,6 +27,7 @@ class StreamOptions:
     queue: int = DEFAULT_QUEUE
     rate_hz: float | None = None
     mode: Mode = Mode.BOTH
+    batch: bool = False  # msgpack frames may carry several messages (services.runtime.edge.batch)
 
     @classmethod
     def from_query(cls, query: Mapping[str, str]) -> StreamOptions:
@@ -54,7 +55,10 @@ class StreamOptions:
             except ValueError:
                 choices = ", ".join(m.value for m in Mode)
                 raise FrameRejected(Close.POLICY, f"mode must be one of {choices}") from None
-        return cls(queue=queue, rate_hz=rate_hz, mode=mode)
+        batch = query.get("batch", "0")
+        if batch not in ("0", "1"):
+            raise FrameRejected(Close.POLICY, "batch must be 0 or 1")
+        return cls(queue=queue, rate_hz=rate_hz, mode=mode, batch=batch == "1")
 
     @property
     def reads(self) -> bool:

@@ -4,7 +4,10 @@ Like ROS's ``queue_size``: when a reader falls behind, its oldest frames are dro
 publisher and every other reader go on at full speed. There is no backpressure by design. The
 queue is bounded in frames (the reader's ``queue``) and in bytes (a reader of camera images
 does not hold a hundred of them), and it says since when its writer has been unable to send,
-which is how a stalled reader is found (``services.runtime.edge.pump``).
+which is how a stalled reader is found (``services.runtime.edge.pump``). A reader that asked
+for batches (:mod:`.batch`) gets the first frame published in a turn of the event loop at once,
+as every reader does, and the rest of that turn's, or those queued while its socket was busy,
+joined into one frame.
 """
 
 from __future__ import annotations
@@ -13,6 +16,7 @@ import asyncio
 from collections import deque
 from collections.abc import Callable
 
+from services.runtime.edge import batch
 from services.runtime.edge.encoding import Encoding
 
 __all__ = ["DEFAULT_OUTBOX_BYTES", "Outbox"]
@@ -26,9 +30,14 @@ Frame = str | bytes
 class Outbox:
     """Frames waiting to be written to one connection, oldest dropped when full."""
 
-    __slots__ = ("_bytes", "_frames", "_ready", "busy_since", "dropped", "encoding", "max_bytes", "max_frames", "send_now")
+    __slots__ = (
+        "_bytes", "_flush_pending", "_frames", "_loop", "_ready", "batch", "busy_since", "dropped", "encoding",
+        "max_bytes", "max_frames", "send_now",
+    )  # fmt: skip
 
-    def __init__(self, maxlen: int, encoding: Encoding = Encoding.JSON, max_bytes: int = DEFAULT_OUTBOX_BYTES) -> None:
+    def __init__(
+        self, maxlen: int, encoding: Encoding = Encoding.JSON, max_bytes: int = DEFAULT_OUTBOX_BYTES, *, batch: bool = False
+    ) -> None:
         self._frames: deque[Frame] = deque()
         self._ready = asyncio.Event()
         self._bytes = 0
@@ -42,16 +51,45 @@ class Outbox:
         # Set by the connection's writer while it is idle: sends a frame at once instead of
         # waking the writer (True), or declines (False) and the frame is queued.
         self.send_now: Callable[[Frame], bool] | None = None
+        # A batching outbox sends the first frame of a loop turn at once
+        # and joins the rest of that turn's into one frame at its end.
+        self.batch = batch
+        self._flush_pending = False
+        self._loop = asyncio.get_running_loop() if batch else None
 
     def push(self, frame: Frame) -> None:
         """Queue ``frame``; called on the publish path, so it never blocks."""
         frames = self._frames
-        if not frames and self.send_now is not None and self.send_now(frame):
+        if self.batch:
+            frame = batch.one_line(frame)
+        if not frames and not self._flush_pending and self.send_now is not None and self.send_now(frame):
+            if self._loop is not None:  # batching: the first frame of a loop turn goes at once, the rest at its end
+                self._flush_pending = True
+                self._loop.call_soon(self._flush)
             return
         frames.append(frame)
         self._bytes += len(frame)
         if len(frames) > self.max_frames or (self._bytes > self.max_bytes and len(frames) > 1):
             self._drop_oldest()
+        if self._loop is None:
+            self._ready.set()
+        elif not self._flush_pending:
+            self._flush_pending = True
+            self._loop.call_soon(self._flush)
+
+    def _flush(self) -> None:
+        """End of the loop turn: what a batching outbox holds goes as one frame, sent from here
+        while the writer is idle (as an unbatched push would), else by the writer."""
+        self._flush_pending = False
+        frames = self._frames
+        if not frames:
+            return
+        if self.send_now is not None:
+            joined = batch.join(list(frames))
+            if len(joined) == 1 and self.send_now(joined[0]):
+                frames.clear()
+                self._bytes = 0
+                return
         self._ready.set()
 
     def _drop_oldest(self) -> None:
@@ -66,12 +104,15 @@ class Outbox:
         return len(self._frames)
 
     async def drain(self) -> list[Frame]:
-        """Wait until frames are queued, then take all of them (oldest first)."""
+        """Wait until frames are queued, then take all of them (oldest first; a batching outbox
+        joins them into as few frames as :mod:`.batch` allows)."""
         await self._ready.wait()
         self._ready.clear()
         frames = list(self._frames)
         self._frames.clear()
         self._bytes = 0
+        if self.batch and len(frames) > 1:
+            return batch.join(frames)
         return frames
 
     async def latest(self) -> Frame:

@@ -4,7 +4,7 @@
 
 It negotiates the encoding (JSON text, or msgpack: :mod:`.encoding`), accepts the socket, finds
 the topic (``find_port``: a node's own endpoint, or the core's gateway view of the topic), reads
-the options (``queue``, ``rate``, ``mode``), checks the token before a client may publish, and
+the options (``queue``, ``rate``, ``mode``, ``batch``), checks the token before a client may publish, and
 pumps frames both ways. What a frame *means* is the port's:
 
 - ``open(connection)``: a socket arrives; returns the latched frame to send it first, if any,
@@ -85,7 +85,7 @@ async def serve_topic_socket(
         return
     connection = TopicConnection(
         options=options,
-        outbox=Outbox(options.outbox_size, encoding) if options.reads else None,
+        outbox=Outbox(options.outbox_size, encoding, batch=options.batch) if options.reads else None,
         may_publish=token_matches(token, websocket),
         encoding=encoding,
     )

@@ -91,7 +91,7 @@ async def test_oversized_frame_closes_with_1009(core, start_node) -> None:
         await wait_until(lambda: any(t.linear.x == 3.0 for t in sink.received), what="the node to keep serving")
 
 
-@pytest.mark.parametrize("query", ["queue=0", "queue=abc", "rate=-1", "rate=nan"])
+@pytest.mark.parametrize("query", ["queue=0", "queue=abc", "rate=-1", "rate=nan", "batch=2"])
 async def test_bad_options_close_with_1008(start_node, query) -> None:
     sink = await start_node(Teleop)
     async with connect(stream_url(sink.url, "/echo") + "?" + query) as websocket:
