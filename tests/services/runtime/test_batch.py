@@ -179,3 +179,15 @@ async def test_a_malformed_batch_from_a_link_is_dropped_with_a_warning_and_the_n
         endpoint.receive_link_frame(batch.join([encode(_twist(7.0), Encoding.MSGPACK)] * 2)[0])
     await wait_until(lambda: listener.received == [7.0, 7.0], what="the good batch")
     assert "not a msgpack batch" in caplog.text
+
+
+async def test_a_latched_frame_sent_pretty_reaches_a_batching_json_reader_on_one_line(core) -> None:
+    twist = {"linear": {"x": 1.5, "y": 0.0, "z": 0.0}, "angular": {"x": 0.0, "y": 0.0, "z": 0.5}}
+    url = stream_url(core.url, "/pretty", type="geometry_msgs/msg/Twist")
+    async with connect(url) as publisher:
+        await publisher.send(json.dumps(twist, indent=2))  # every field named: forwarded as it came
+        async with connect(stream_url(core.url, "/pretty")) as plain:
+            assert "\n" in await asyncio.wait_for(plain.recv(), 5)  # the latched frame, as sent
+        async with connect(stream_url(core.url, "/pretty", batch=1)) as batching:
+            frame = await asyncio.wait_for(batching.recv(), 5)
+    assert not batch.is_batch(frame) and json.loads(frame) == twist
