@@ -81,22 +81,26 @@ def decode(frame: str | bytes, msg_type: type[Message], type_name: str) -> Messa
     """Validate one frame (JSON text or msgpack bytes) into ``msg_type``, or FrameRejected(1007)."""
     # The type's validator itself, not model_validate(_json): their keyword handling was ~15% of
     # a pose's decode (docs/performance.md).
+    if isinstance(frame, bytes):
+        try:
+            value = ormsgpack.unpackb(frame)
+        except (ormsgpack.MsgpackDecodeError, ValueError, TypeError) as error:
+            raise FrameRejected(Close.INVALID_FRAME, f"not a msgpack {type_name}: {error}") from None
+        return _validate_unpacked(value, msg_type, type_name)
     try:
-        if isinstance(frame, str):
-            return msg_type.__pydantic_validator__.validate_json(frame)  # type: ignore[no-any-return]
-        return msg_type.__pydantic_validator__.validate_python(ormsgpack.unpackb(frame))  # type: ignore[no-any-return]
+        return msg_type.__pydantic_validator__.validate_json(frame)  # type: ignore[no-any-return]
     except ValidationError as error:
         raise FrameRejected(Close.INVALID_FRAME, describe_validation_error(type_name, error)) from None
-    except (ormsgpack.MsgpackDecodeError, ValueError, TypeError) as error:
-        raise FrameRejected(Close.INVALID_FRAME, f"not a msgpack {type_name}: {error}") from None
 
 
-def _validated(value: Any, msg_type: type[Message]) -> Message:
-    """A message unpacked from msgpack (one of a batch), validated into ``msg_type``."""
+def _validate_unpacked(value: Any, msg_type: type[Message], type_name: str) -> Message:
+    """A message unpacked from msgpack (a frame, or one of a batch's), validated into ``msg_type``."""
     try:
         return msg_type.__pydantic_validator__.validate_python(value)  # type: ignore[no-any-return]
     except ValidationError as error:
-        raise FrameRejected(Close.INVALID_FRAME, describe_validation_error(msg_type.__ros_type__, error)) from None
+        raise FrameRejected(Close.INVALID_FRAME, describe_validation_error(type_name, error)) from None
+    except (ValueError, TypeError) as error:
+        raise FrameRejected(Close.INVALID_FRAME, f"not a msgpack {type_name}: {error}") from None
 
 
 class Frames:
@@ -114,13 +118,14 @@ class Frames:
         *,
         json_text: str | None = None,
         packed: bytes | None = None,
+        unpacked: Any = None,
         msg_type: type[Message] | None = None,
     ) -> None:
         self._msg = msg
         self._json = json_text
         self._packed = packed
         self._type = msg_type if msg_type is not None else type(msg) if msg is not None else None
-        self._unpacked: Any = None  # a message of a batch, unpacked but not validated
+        self._unpacked = unpacked  # a message of a batch, unpacked but not validated
 
     @classmethod
     def received(cls, frame: str | bytes, msg_type: type[Message] | None) -> Frames:
@@ -132,9 +137,7 @@ class Frames:
     @classmethod
     def unpacked(cls, value: Any, msg_type: type[Message] | None) -> Frames:
         """The frames of one message of a batch (:mod:`.batch`), as unpacked from it."""
-        frames = cls(msg_type=msg_type)
-        frames._unpacked = value
-        return frames
+        return cls(unpacked=value, msg_type=msg_type)
 
     def get(self, encoding: Encoding) -> str | bytes:
         return self.json if encoding is Encoding.JSON else self.packed
@@ -166,11 +169,12 @@ class Frames:
         if self._msg is None:
             if self._type is None:
                 raise TypeError("a frame of an unknown type has no message")
+            type_name = self._type.__ros_type__
             if self._unpacked is not None:
-                self._msg = _validated(self._unpacked, self._type)
-                return self._msg
-            source: str | bytes = self._json if self._json is not None else self._packed or b""
-            self._msg = decode(source, self._type, self._type.__ros_type__)
+                self._msg = _validate_unpacked(self._unpacked, self._type, type_name)
+            else:
+                source: str | bytes = self._json if self._json is not None else self._packed or b""
+                self._msg = decode(source, self._type, type_name)
         return self._msg
 
 

@@ -27,7 +27,7 @@ class StreamOptions:
     queue: int = DEFAULT_QUEUE
     rate_hz: float | None = None
     mode: Mode = Mode.BOTH
-    batch: bool = False  # msgpack frames may carry several messages (services.runtime.edge.batch)
+    batch: bool = False  # a frame may carry several messages (services.runtime.edge.batch)
 
     @classmethod
     def from_query(cls, query: Mapping[str, str]) -> StreamOptions:

@@ -31,7 +31,7 @@ class Outbox:
     """Frames waiting to be written to one connection, oldest dropped when full."""
 
     __slots__ = (
-        "_bytes", "_flush_pending", "_frames", "_loop", "_ready", "batch", "busy_since", "dropped", "encoding",
+        "_bytes", "_flush_pending", "_frames", "_ready", "batch", "busy_since", "dropped", "encoding",
         "max_bytes", "max_frames", "send_now",
     )  # fmt: skip
 
@@ -55,42 +55,55 @@ class Outbox:
         # and joins the rest of that turn's into one frame at its end.
         self.batch = batch
         self._flush_pending = False
-        self._loop = asyncio.get_running_loop() if batch else None
+
+    def sendable(self, frame: Frame) -> Frame:
+        """``frame`` as this reader is sent it: on one line for a batching JSON reader."""
+        return batch.one_line(frame) if self.batch else frame
 
     def push(self, frame: Frame) -> None:
         """Queue ``frame``; called on the publish path, so it never blocks."""
         frames = self._frames
-        if self.batch:
-            frame = batch.one_line(frame)
+        frame = self.sendable(frame)
         if not frames and not self._flush_pending and self.send_now is not None and self.send_now(frame):
-            if self._loop is not None:  # batching: the first frame of a loop turn goes at once, the rest at its end
-                self._flush_pending = True
-                self._loop.call_soon(self._flush)
+            if self.batch:  # the first frame of a loop turn went at once; the rest go at its end
+                self._flush_at_turn_end()
             return
+        # A batch that is full goes now, as unbatched frames would have: only a reader whose
+        # socket cannot take it loses frames, never one that a long turn filled up.
+        if self.batch and frames and self._bytes + len(frame) > batch.BATCH_MAX_BYTES:
+            self._send_queued()
         frames.append(frame)
         self._bytes += len(frame)
+        if self.batch and len(frames) >= self.max_frames:
+            self._send_queued()
         if len(frames) > self.max_frames or (self._bytes > self.max_bytes and len(frames) > 1):
             self._drop_oldest()
-        if self._loop is None:
+        if self.batch:
+            self._flush_at_turn_end()
+        else:
             self._ready.set()
-        elif not self._flush_pending:
+
+    def _flush_at_turn_end(self) -> None:
+        if not self._flush_pending:
             self._flush_pending = True
-            self._loop.call_soon(self._flush)
+            asyncio.get_running_loop().call_soon(self._flush)
 
     def _flush(self) -> None:
-        """End of the loop turn: what a batching outbox holds goes as one frame, sent from here
-        while the writer is idle (as an unbatched push would), else by the writer."""
+        """End of the loop turn: what a batching outbox holds goes as one frame, else (the
+        writer busy, or more than one frame's worth) the writer takes it."""
         self._flush_pending = False
+        if self._frames and not self._send_queued():
+            self._ready.set()
+
+    def _send_queued(self) -> bool:
+        """Send the queued frames as one, from here, if the writer is idle and they fit one."""
         frames = self._frames
-        if not frames:
-            return
-        if self.send_now is not None:
-            joined = batch.join(list(frames))
-            if len(joined) == 1 and self.send_now(joined[0]):
-                frames.clear()
-                self._bytes = 0
-                return
-        self._ready.set()
+        fits_one = len(frames) == 1 or self._bytes <= batch.BATCH_MAX_BYTES
+        if fits_one and self.send_now is not None and self.send_now(batch.join(list(frames))[0]):
+            frames.clear()
+            self._bytes = 0
+            return True
+        return False
 
     def _drop_oldest(self) -> None:
         frames = self._frames

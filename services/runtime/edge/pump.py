@@ -106,7 +106,7 @@ async def write_outbox(
     try:
         with contextlib.suppress(WebSocketDisconnect, RuntimeError, OSError):
             if initial_frame is not None:
-                await _timed(send, outbox, initial_frame, forms)
+                await _timed(send, outbox, outbox.sendable(initial_frame), forms)
             if rate_hz is None:
                 while True:
                     outbox.send_now = eager  # only while idle: a frame must not overtake queued ones

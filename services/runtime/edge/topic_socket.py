@@ -28,7 +28,6 @@ from typing import Protocol
 from starlette.websockets import WebSocket
 
 from services.runtime.auth import NOT_AUTHORISED, token_matches
-from services.runtime.edge import batch
 from services.runtime.edge.encoding import Encoding, negotiate
 from services.runtime.edge.frames import FrameRejected, close_with
 from services.runtime.edge.options import Mode, StreamOptions
@@ -97,8 +96,6 @@ async def serve_topic_socket(
         port.receive_frame(connection, frame)
 
     initial_frame = port.open(connection)
-    if initial_frame is not None and options.batch:
-        initial_frame = batch.one_line(initial_frame)  # what the outbox does to every other frame
     try:
         rejected = await serve_stream(
             websocket,

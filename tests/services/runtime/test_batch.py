@@ -106,6 +106,19 @@ async def test_a_batching_outbox_keeps_its_queue_bound_and_the_writer_gets_the_r
     assert [json.loads(line)["linear"]["x"] for line in batch.split(joined)] == [3.0, 4.0, 5.0, 6.0, 7.0]
 
 
+async def test_a_turn_that_fills_the_queue_sends_a_full_batch_rather_than_dropping() -> None:
+    outbox = Outbox(5, Encoding.MSGPACK, batch=True)
+    sent: list[bytes] = []
+    outbox.send_now = lambda frame: sent.append(frame) is None  # type: ignore[assignment,func-returns-value]
+    frames = [encode(_twist(float(i)), Encoding.MSGPACK) for i in range(12)]
+    for frame in frames:  # one turn, more than the queue holds, the writer idle
+        outbox.push(frame)
+    await asyncio.sleep(0)
+    assert outbox.dropped == 0
+    received = [m for f in sent for m in (batch.split(f) if batch.is_batch(f) else [ormsgpack.unpackb(f)])]
+    assert received == [ormsgpack.unpackb(f) for f in frames]
+
+
 # -- on real sockets --------------------------------------------------------------------------
 
 
@@ -160,15 +173,6 @@ async def test_batching_readers_get_every_message_in_order_in_fewer_frames(start
     assert packed_frames < count / 10 and text_frames < count / 10
 
 
-async def test_a_subscriber_node_gets_a_burst_whole_and_in_order_through_its_link(start_node) -> None:
-    talker = await start_node(Talker)
-    listener = await start_node(Listener)
-    await wait_until(lambda: talker.publisher.get_subscription_count() == 1, what="the link")
-    talker.burst(500)
-    await wait_until(lambda: len(listener.received) == 500, what="the whole burst")
-    assert listener.received == [float(i) for i in range(500)]
-
-
 async def test_a_malformed_batch_from_a_link_is_dropped_with_a_warning_and_the_next_one_delivered(
     start_node, caplog
 ) -> None:
@@ -191,3 +195,40 @@ async def test_a_latched_frame_sent_pretty_reaches_a_batching_json_reader_on_one
         async with connect(stream_url(core.url, "/pretty", batch=1)) as batching:
             frame = await asyncio.wait_for(batching.recv(), 5)
     assert not batch.is_batch(frame) and json.loads(frame) == twist
+
+
+class RawListener(Node):
+    """Reads /burst raw (as the recorder does): a topic read only raw links in JSON."""
+
+    def __init__(self, settings) -> None:
+        super().__init__("batch_raw_listener", settings=settings)
+        self.received: list[float] = []
+        self.create_subscription(
+            Twist, "/burst", lambda frame: self.received.append(json.loads(frame)["linear"]["x"]), 1000, raw=True
+        )
+
+
+@pytest.mark.parametrize("listener_type", [Listener, RawListener], ids=["msgpack link", "raw JSON link"])
+async def test_a_subscriber_node_gets_a_burst_whole_and_in_order_through_its_link(start_node, listener_type) -> None:
+    talker = await start_node(Talker)
+    listener = await start_node(listener_type)
+    await wait_until(lambda: talker.publisher.get_subscription_count() == 1, what="the link")
+    talker.burst(500)
+    await wait_until(lambda: len(listener.received) == 500, what="the whole burst")
+    assert listener.received == [float(i) for i in range(500)]
+
+
+async def test_the_core_splits_a_burst_for_its_own_readers_one_message_a_frame(core, start_node) -> None:
+    talker = await start_node(Talker)
+    count = 200
+    async with (
+        connect(stream_url(core.url, "/burst", queue=count, encoding="msgpack")) as packed,
+        connect(stream_url(core.url, "/burst", queue=count)) as text,
+    ):
+        await wait_until(lambda: talker.publisher.get_subscription_count() == 1, what="the core's link")
+        talker.burst(count)
+        packed_frames = [await asyncio.wait_for(packed.recv(), 5) for _ in range(count)]
+        text_frames = [await asyncio.wait_for(text.recv(), 5) for _ in range(count)]
+    expected = [encode(_twist(float(i)), Encoding.MSGPACK) for i in range(count)]
+    assert packed_frames == expected  # each message's bytes as its publisher made them
+    assert [json.loads(frame)["linear"]["x"] for frame in text_frames] == [float(i) for i in range(count)]
