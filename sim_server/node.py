@@ -33,6 +33,7 @@ from sim_server.settings import (
     MIN_CAMERA_SIDE,
     SimSettings,
 )
+from sim_server.world import Pose as BodyPose
 from sim_server.world import World, WorldConfig
 from sim_server.world_node import DEFAULT_PORT, WorldNode
 
@@ -92,7 +93,7 @@ class SimulatorNode(WorldNode):
         return f"drone at the start, {self.sim.boxes} new boxes dropped"
 
     def _publish_build(self) -> None:
-        self._publish_boxes(self.header())
+        self.boxes_publisher.publish(_boxes_message(self.header(), self.world.boxes_poses()))
 
     def _world_fields(self) -> dict[str, Any]:
         return {"world": "drone", "boxes": self.sim.boxes}
@@ -103,23 +104,24 @@ class SimulatorNode(WorldNode):
         return render_rgb(self.world.client, chase_view(self.world), width, height)
 
     def _publish_tick(self, steps: int) -> None:
+        # The world is read now; the messages of topics nobody reads are made only if asked for
+        # (publish_built): at --speed max they would cost more than the steps they report on.
         header = self.header()
         (x, y, z), (qx, qy, qz, qw) = self.world.drone_pose()
-        self.pose_publisher.publish(
-            PoseStamped(
+        self.pose_publisher.publish_built(
+            lambda: PoseStamped(
                 header=header,
-                pose=Pose(
-                    position=Point(x=x, y=y, z=z), orientation=Quaternion(x=qx, y=qy, z=qz, w=qw)
-                ),
+                pose=Pose(position=Point(x=x, y=y, z=z), orientation=Quaternion(x=qx, y=qy, z=qz, w=qw)),
             )
         )
-        self.clock_publisher.publish(header.stamp.model_copy())
+        self.clock_publisher.publish_built(header.stamp.model_copy)
         if steps % BOXES_EVERY_STEPS == 0:
-            self._publish_boxes(header.model_copy())
+            boxes = self.world.boxes_poses()
+            self.boxes_publisher.publish_built(lambda: _boxes_message(header.model_copy(), boxes))
         if steps % STATE_EVERY_STEPS == 0:
             state = self.world.drone_state()
-            self.state_publisher.publish(
-                State(
+            self.state_publisher.publish_built(
+                lambda: State(
                     header=header.model_copy(),
                     connected=True,
                     armed=state.armed,
@@ -130,12 +132,13 @@ class SimulatorNode(WorldNode):
                 )
             )
 
-    def _publish_boxes(self, header: Header) -> None:
-        poses = [
-            Pose(position=Point(x=x, y=y, z=z), orientation=Quaternion(x=qx, y=qy, z=qz, w=qw))
-            for (x, y, z), (qx, qy, qz, qw) in self.world.boxes_poses()
-        ]
-        self.boxes_publisher.publish(PoseArray(header=header, poses=poses))
+
+def _boxes_message(header: Header, boxes: list[BodyPose]) -> PoseArray:
+    poses = [
+        Pose(position=Point(x=x, y=y, z=z), orientation=Quaternion(x=qx, y=qy, z=qz, w=qw))
+        for (x, y, z), (qx, qy, qz, qw) in boxes
+    ]
+    return PoseArray(header=header, poses=poses)
 
 
 def main(argv: list[str] | None = None) -> int:

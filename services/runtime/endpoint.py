@@ -14,6 +14,7 @@ own ``ws://NODE/TOPIC`` talks to.
 from __future__ import annotations
 
 import logging
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from services.runtime.edge import batch
@@ -81,6 +82,21 @@ class TopicEndpoint:
                 tap.push(frames.get(tap.encoding))
         for subscription in self.subscriptions:
             subscription.enqueue(msg)
+
+    @property
+    def read(self) -> bool:
+        """Whether anyone reads what this participant publishes now (readers, taps, subscriptions)."""
+        return bool(self.outboxes or self.taps or self.subscriptions)
+
+    def dispatch_deferred(self, build: Callable[[], Message]) -> None:
+        """Deliver the message ``build()`` makes if anyone reads the topic now; otherwise keep it
+        unmade as the latest (``GET /TOPIC`` makes it), and count it as published."""
+        if self.read:
+            self.dispatch(build())
+            return
+        assert self.msg_type is not None, "only a publisher's own topic defers"
+        self.latest = Frames.deferred(build, self.msg_type)
+        self.published_count += 1
 
     def receive(self, msg: Message, frames: Frames, sender: Outbox | None = None) -> None:
         """Deliver a message from elsewhere (a client of this node) to taps and subscriptions."""

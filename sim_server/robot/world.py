@@ -96,6 +96,9 @@ class Bump:
         return self.left_front or self.left_side or self.right_front or self.right_side
 
 
+_NO_BUMP = Bump()
+
+
 @dataclass(slots=True)
 class _Robot:
     body: int
@@ -249,12 +252,18 @@ class RobotWorld(BulletWorld):
         """Which parts of robot ``robot``'s bumper touch something other than the floor now."""
         self._check_open()
         body = self._robots[robot].body
+        contacts = [
+            contact
+            for contact in p.getContactPoints(bodyA=body, linkIndexA=-1, physicsClientId=self._client)
+            if contact[2] != self._floor
+        ]
+        if not contacts:  # the usual case: the pose is read only when something touches
+            return _NO_BUMP
         x, y, yaw = self.robot_pose(robot)
         touched = set()
-        for contact in p.getContactPoints(bodyA=body, linkIndexA=-1, physicsClientId=self._client):
-            if contact[2] != self._floor:
-                cx, cy = contact[5][0] - x, contact[5][1] - y  # the point on this robot
-                touched.add(bumper_part(math.degrees(math.atan2(cy, cx) - yaw)))
+        for contact in contacts:
+            cx, cy = contact[5][0] - x, contact[5][1] - y  # the point on this robot
+            touched.add(bumper_part(math.degrees(math.atan2(cy, cx) - yaw)))
         return Bump(**{part: True for part in touched if part})
 
     def person_pose(self) -> tuple[float, float, float]:

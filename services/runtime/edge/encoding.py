@@ -16,7 +16,7 @@ from __future__ import annotations
 import base64
 import enum
 import json
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import ormsgpack
@@ -110,7 +110,7 @@ class Frames:
     the type, if known, for converting it.
     """
 
-    __slots__ = ("_json", "_msg", "_packed", "_type", "_unpacked")
+    __slots__ = ("_build", "_json", "_msg", "_packed", "_type", "_unpacked")
 
     def __init__(
         self,
@@ -126,6 +126,7 @@ class Frames:
         self._packed = packed
         self._type = msg_type if msg_type is not None else type(msg) if msg is not None else None
         self._unpacked = unpacked  # a message of a batch, unpacked but not validated
+        self._build: Callable[[], Message] | None = None
 
     @classmethod
     def received(cls, frame: str | bytes, msg_type: type[Message] | None) -> Frames:
@@ -138,6 +139,14 @@ class Frames:
     def unpacked(cls, value: Any, msg_type: type[Message] | None) -> Frames:
         """The frames of one message of a batch (:mod:`.batch`), as unpacked from it."""
         return cls(unpacked=value, msg_type=msg_type)
+
+    @classmethod
+    def deferred(cls, build: Callable[[], Message], msg_type: type[Message]) -> Frames:
+        """The frames of a message not made yet: ``build()`` makes it when first asked for (a
+        publisher's message that nobody reads now, kept as the topic's latest)."""
+        frames = cls(msg_type=msg_type)
+        frames._build = build
+        return frames
 
     def get(self, encoding: Encoding) -> str | bytes:
         return self.json if encoding is Encoding.JSON else self.packed
@@ -166,6 +175,8 @@ class Frames:
 
     def message(self) -> Message:
         """The message itself (parsed once, from whichever frame there is)."""
+        if self._msg is None and self._build is not None:
+            self._msg, self._build = self._build(), None
         if self._msg is None:
             if self._type is None:
                 raise TypeError("a frame of an unknown type has no message")
