@@ -5,6 +5,7 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import os
+import socket
 import time
 from collections.abc import AsyncIterator, Awaitable, Callable
 
@@ -27,6 +28,39 @@ os.environ["SKYDECK_FOXGLOVE_PORT"] = "0"
 def free_port() -> int:
     """A TCP port free on loopback right now."""
     return free_port_block(1)
+
+
+def held_socket(port: int = 0, *, timeout_s: float = 5.0) -> socket.socket:
+    """A TCP socket bound on loopback (a free port for 0), not listening yet: it refuses
+    connections as no server would, but holds the port until a server listens on it. A port
+    picked free and bound later can be taken meanwhile (a client's ephemeral port), and uvicorn
+    then exits the whole test process. Binding ``port`` again (a restart) retries while a
+    connection of the old server's still holds it."""
+    deadline = time.monotonic() + timeout_s
+    while True:
+        sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM, socket.IPPROTO_TCP)
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        try:
+            sock.bind(("127.0.0.1", port))
+        except OSError:
+            sock.close()
+            if time.monotonic() > deadline:
+                raise
+            time.sleep(0.05)
+            continue
+        sock.setblocking(False)
+        return sock
+
+
+async def serve_on(server: uvicorn.Server, sock: socket.socket) -> asyncio.Task[None]:
+    """Serve ``server`` on the held socket ``sock`` (it listens from now); returns once it does."""
+    server.capture_signals = contextlib.nullcontext  # type: ignore[method-assign]
+    task = asyncio.create_task(server.serve(sockets=[sock]))
+    await wait_until(lambda: server.started or task.done(), what="the server to start")
+    if not server.started:
+        await task
+        raise AssertionError("the test server did not start")
+    return task
 
 
 async def wait_until(predicate: Callable[[], bool], timeout_s: float = 5.0, what: str = "condition") -> None:
@@ -63,7 +97,8 @@ class CoreProcess:
     """A real core on uvicorn, served from the test's event loop; can be stopped and restarted."""
 
     def __init__(self, port: int | None = None, **settings: object) -> None:
-        self.port = port or free_port()
+        self._socket: socket.socket | None = held_socket(port or 0)
+        self.port: int = self._socket.getsockname()[1]
         settings = {"rosbridge_port": 0, "foxglove_port": 0, **settings}  # endpoints off unless asked for
         self.settings = CoreSettings(host="127.0.0.1", port=self.port, **settings)  # type: ignore[arg-type]
         self.url = f"http://127.0.0.1:{self.port}"
@@ -75,16 +110,14 @@ class CoreProcess:
         self.app = create_app(self.settings)
         config = uvicorn.Config(
             self.app,
-            host="127.0.0.1",
-            port=self.port,
             log_level="warning",
             ws_max_size=self.settings.max_message_bytes,
             ws_per_message_deflate=False,
         )
         self._server = uvicorn.Server(config)
-        self._server.capture_signals = contextlib.nullcontext  # type: ignore[method-assign]
-        self._task = asyncio.create_task(self._server.serve())
-        await wait_until(lambda: self._server is not None and self._server.started, what="core to start")
+        sock = self._socket if self._socket is not None else held_socket(self.port)
+        self._socket = None  # the server's now: it closes it when it stops
+        self._task = await serve_on(self._server, sock)
 
     async def stop(self) -> None:
         if self._server is not None and self._task is not None:

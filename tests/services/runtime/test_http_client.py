@@ -20,7 +20,7 @@ from services.runtime.http_client import (
     HttpTimeout,
     HttpUnreachable,
 )
-from tests.conftest import free_port
+from tests.conftest import free_port, held_socket, serve_on
 
 pytestmark = pytest.mark.timeout(30)
 
@@ -80,13 +80,10 @@ APP = Starlette(
 
 @pytest.fixture
 async def server() -> AsyncIterator[str]:
-    port = free_port()
-    config = uvicorn.Config(APP, host="127.0.0.1", port=port, log_level="warning", lifespan="off")
-    instance = uvicorn.Server(config)
-    task = asyncio.create_task(instance.serve())
-    while not instance.started:
-        assert not task.done(), "the test server did not start"
-        await asyncio.sleep(0.01)
+    sock = held_socket()
+    port = sock.getsockname()[1]
+    instance = uvicorn.Server(uvicorn.Config(APP, log_level="warning", lifespan="off"))
+    task = await serve_on(instance, sock)
     _peers.clear()
     yield f"http://127.0.0.1:{port}"
     instance.should_exit = True
@@ -159,13 +156,11 @@ async def test_a_reply_larger_than_the_limit_is_refused(server: str, client: Htt
 
 async def test_server_restart_between_calls_is_survived(client: HttpClient) -> None:
     """A kept-alive connection to a server that went away is replaced, not reported."""
-    port = free_port()
-    for _ in range(2):
-        config = uvicorn.Config(APP, host="127.0.0.1", port=port, log_level="warning", lifespan="off")
-        instance = uvicorn.Server(config)
-        task = asyncio.create_task(instance.serve())
-        while not instance.started:
-            await asyncio.sleep(0.01)
+    sock = held_socket()
+    port = sock.getsockname()[1]
+    for restart in (False, True):
+        instance = uvicorn.Server(uvicorn.Config(APP, log_level="warning", lifespan="off"))
+        task = await serve_on(instance, held_socket(port) if restart else sock)  # the same port again
         assert (await client.get(f"http://127.0.0.1:{port}/echo", timeout_s=5)).status == 200
         instance.should_exit = True
         await task
