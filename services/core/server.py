@@ -6,6 +6,7 @@ import asyncio
 import contextlib
 import logging
 import signal
+import socket
 from collections.abc import Iterator
 
 import uvicorn
@@ -13,7 +14,9 @@ import uvicorn
 from services.core.app import create_app
 from services.core.protocols.servers import bind_endpoints
 from services.core.settings import CoreSettings
+from services.runtime.errors import NodeError
 from services.runtime.executor import configure_logging, run
+from services.runtime.server import bind
 
 __all__ = ["serve"]
 
@@ -46,15 +49,18 @@ def serve(settings: CoreSettings | None = None) -> None:
     """
     settings = settings or CoreSettings()
     configure_logging(settings.log_level)
-    endpoint_sockets = bind_endpoints(settings)
+    core_socket = _listen(settings)
+    try:
+        endpoint_sockets = bind_endpoints(settings)
+    except BaseException:
+        core_socket.close()
+        raise
     log = logging.getLogger("skydeck.core")
     log.info("core at http://%s:%d (dashboard /, every command /docs)", settings.host, settings.port)
     for name, sock in endpoint_sockets.items():
         log.info("%s endpoint at ws://%s:%d", name, settings.host, sock.getsockname()[1])
     config = uvicorn.Config(
         create_app(settings, endpoint_sockets=endpoint_sockets),
-        host=settings.host,
-        port=settings.port,
         log_level="warning",
         access_log=False,
         ws_max_size=settings.max_message_bytes,
@@ -62,4 +68,13 @@ def serve(settings: CoreSettings | None = None) -> None:
         ws_ping_timeout=settings.ping_timeout_s,
         ws_per_message_deflate=False,
     )
-    run(_Server(config).serve())
+    run(_Server(config).serve(sockets=[core_socket]))
+
+
+def _listen(settings: CoreSettings) -> socket.socket:
+    """The core's listening socket, bound before anything is announced: a port in use is one
+    line naming it (uvicorn would log the core's address, then its own error, and exit 3)."""
+    try:
+        return bind(settings.host, settings.port)
+    except NodeError as error:
+        raise NodeError(f"the core {error}") from None

@@ -84,7 +84,7 @@ def bind(host: str, port: int) -> socket.socket:
         sock.bind((host, port))
     except OSError as error:
         sock.close()
-        raise NodeError(f"cannot listen on {host}:{port}: {error.strerror} (is another node using it? pick --port)") from None
+        raise NodeError(f"cannot listen on {host}:{port}: {error.strerror} (is another Skydeck process using it? pick --port)") from None
     sock.listen(128)
     sock.setblocking(False)
     return sock

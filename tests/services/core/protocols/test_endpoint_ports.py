@@ -1,5 +1,6 @@
 """The endpoints' ports: defaults, off with 0, on the flags of `skydeck core` and `skydeck
-launch`, and a port in use is one clear line at start-up. (No test binds 9090 or 8765.)"""
+launch`, and a port in use (an endpoint's or the core's own) is one clear line at start-up.
+(No test binds 9090 or 8765.)"""
 
 from __future__ import annotations
 
@@ -51,6 +52,13 @@ async def test_a_busy_port_is_one_line_from_skydeck_core(busy_port: int) -> None
     (line,) = stderr.splitlines()  # one line, nothing else
     assert code == 1 and line.startswith("skydeck: error: the rosbridge endpoint")
     assert f"rosbridge endpoint cannot listen on 127.0.0.1:{busy_port}" in line and "--rosbridge-port 0" in line
+
+
+async def test_a_busy_core_port_is_one_line_before_anything_is_announced(busy_port: int) -> None:
+    code, stderr = await run_cli("core", "--port", str(busy_port), "--rosbridge-port", "0", "--foxglove-port", "0")
+    (line,) = stderr.splitlines()  # not the core's address first, not uvicorn's own error
+    assert code == 1 and line.startswith("skydeck: error: the core cannot listen on")
+    assert f"127.0.0.1:{busy_port}" in line and "--port" in line
 
 
 async def test_a_busy_port_is_one_line_from_skydeck_launch(busy_port: int) -> None:
