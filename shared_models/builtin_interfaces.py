@@ -11,7 +11,7 @@ from typing import Any
 
 from shared_models._message import Int32, Message, UInt32
 
-__all__ = ["Duration", "Time"]
+__all__ = ["Duration", "Time", "split_seconds"]
 
 _NS_PER_S = 1_000_000_000
 # ROS 1's keyword names of the two fields.
@@ -68,7 +68,8 @@ class _SecondsAndNanoseconds(Message):
     @classmethod
     def from_sec(cls, seconds: float) -> Any:
         """The value for a float number of seconds (``rospy.Time.from_sec``)."""
-        return cls.from_nsec(round(seconds * _NS_PER_S))
+        sec, nanosec = split_seconds(seconds)
+        return cls(sec=sec, nanosec=nanosec)
 
     from_seconds = from_sec
 
@@ -206,3 +207,9 @@ class Duration(_SecondsAndNanoseconds):
         if not _is_number(divisor):
             return NotImplemented
         return Duration.from_nsec(round(self.to_nsec() / divisor))  # type: ignore[operator]
+
+
+def split_seconds(seconds: float) -> tuple[int, int]:
+    """``(sec, nanosec)`` of a float number of seconds, rounded to the nanosecond as
+    ``Time.from_sec`` does: for a hot loop that stamps plain dicts rather than Time objects."""
+    return divmod(round(seconds * _NS_PER_S), _NS_PER_S)

@@ -105,7 +105,7 @@ class SimulatorNode(WorldNode):
 
     def _publish_tick(self, steps: int) -> None:
         # The world is read now; the messages of topics nobody reads are made only if asked for
-        # (publish_built): at --speed max they would cost more than the steps they report on.
+        # (publish_built), as in the robot world's node.
         header = self.header()
         (x, y, z), (qx, qy, qz, qw) = self.world.drone_pose()
         self.pose_publisher.publish_built(

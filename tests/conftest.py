@@ -30,26 +30,31 @@ def free_port() -> int:
     return free_port_block(1)
 
 
-def held_socket(port: int = 0, *, timeout_s: float = 5.0) -> socket.socket:
+def held_socket(port: int = 0) -> socket.socket:
     """A TCP socket bound on loopback (a free port for 0), not listening yet: it refuses
     connections as no server would, but holds the port until a server listens on it. A port
     picked free and bound later can be taken meanwhile (a client's ephemeral port), and uvicorn
-    then exits the whole test process. Binding ``port`` again (a restart) retries while a
-    connection of the old server's still holds it."""
-    deadline = time.monotonic() + timeout_s
-    while True:
-        sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM, socket.IPPROTO_TCP)
-        sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
-        try:
-            sock.bind(("127.0.0.1", port))
-        except OSError:
-            sock.close()
-            if time.monotonic() > deadline:
-                raise
-            time.sleep(0.05)
-            continue
-        sock.setblocking(False)
-        return sock
+    then exits the whole test process."""
+    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM, socket.IPPROTO_TCP)
+    sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+    try:
+        sock.bind(("127.0.0.1", port))
+    except OSError:
+        sock.close()
+        raise
+    sock.setblocking(False)
+    return sock
+
+
+async def held_again(port: int, timeout_s: float = 5.0) -> socket.socket:
+    """:func:`held_socket` on ``port`` once more (a restart), retrying while a connection of the
+    server before still holds it; the loop runs on meanwhile."""
+    async with asyncio.timeout(timeout_s):
+        while True:
+            try:
+                return held_socket(port)
+            except OSError:
+                await asyncio.sleep(0.05)
 
 
 async def serve_on(server: uvicorn.Server, sock: socket.socket) -> asyncio.Task[None]:
@@ -97,8 +102,12 @@ class CoreProcess:
     """A real core on uvicorn, served from the test's event loop; can be stopped and restarted."""
 
     def __init__(self, port: int | None = None, **settings: object) -> None:
-        self._socket: socket.socket | None = held_socket(port or 0)
-        self.port: int = self._socket.getsockname()[1]
+        # A new core holds a free port from here; a restart on a given port binds it in start().
+        self._socket: socket.socket | None = None
+        if port is None:
+            self._socket = held_socket()
+            port = self._socket.getsockname()[1]
+        self.port: int = port
         settings = {"rosbridge_port": 0, "foxglove_port": 0, **settings}  # endpoints off unless asked for
         self.settings = CoreSettings(host="127.0.0.1", port=self.port, **settings)  # type: ignore[arg-type]
         self.url = f"http://127.0.0.1:{self.port}"
@@ -115,7 +124,7 @@ class CoreProcess:
             ws_per_message_deflate=False,
         )
         self._server = uvicorn.Server(config)
-        sock = self._socket if self._socket is not None else held_socket(self.port)
+        sock = self._socket if self._socket is not None else await held_again(self.port)
         self._socket = None  # the server's now: it closes it when it stops
         self._task = await serve_on(self._server, sock)
 

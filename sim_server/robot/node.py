@@ -21,7 +21,7 @@ from functools import partial
 from typing import Any
 
 from services.runtime import NodeSettings, Publisher
-from shared_models.builtin_interfaces import Time
+from shared_models.builtin_interfaces import Time, split_seconds
 from shared_models.geometry_msgs import (
     Point,
     Pose,
@@ -47,7 +47,6 @@ from sim_server.robot.limits import (
     OBSTACLE_HEIGHT_M,
     ODOM_EVERY_STEPS,
     PHYSICS_DT_S,
-    PHYSICS_HZ,
     RANGE_MAX_M,
     RANGE_MIN_M,
     ROOM_HALF_SIZE_M,
@@ -161,10 +160,10 @@ class RobotSimNode(WorldNode):
     def _publish_tick(self, steps: int) -> None:
         # The simulator's hot path at --speed max. The world is read now; each message is made
         # only if someone reads its topic (publish_built), from plain dicts (a third cheaper than
-        # nested constructors). Unread topics are the common case at speed max: a message nobody
-        # takes cost more than the physics step it reports on.
+        # nested constructors). Unread topics are the common case at speed max, where building
+        # them took about a quarter of the node's time (docs/performance.md).
         world = self.world
-        sec, nanosec = divmod((steps * 1_000_000_000 + PHYSICS_HZ // 2) // PHYSICS_HZ, 1_000_000_000)
+        sec, nanosec = split_seconds(world.time_s)
         stamp = {"sec": sec, "nanosec": nanosec}
         self.clock_publisher.publish_built(lambda: Time.model_validate(stamp))
         scanning = steps % SCAN_EVERY_STEPS == 0

@@ -20,7 +20,7 @@ from services.runtime.http_client import (
     HttpTimeout,
     HttpUnreachable,
 )
-from tests.conftest import free_port, held_socket, serve_on
+from tests.conftest import free_port, held_again, held_socket, serve_on
 
 pytestmark = pytest.mark.timeout(30)
 
@@ -160,7 +160,7 @@ async def test_server_restart_between_calls_is_survived(client: HttpClient) -> N
     port = sock.getsockname()[1]
     for restart in (False, True):
         instance = uvicorn.Server(uvicorn.Config(APP, log_level="warning", lifespan="off"))
-        task = await serve_on(instance, held_socket(port) if restart else sock)  # the same port again
+        task = await serve_on(instance, await held_again(port) if restart else sock)  # the same port again
         assert (await client.get(f"http://127.0.0.1:{port}/echo", timeout_s=5)).status == 200
         instance.should_exit = True
         await task
