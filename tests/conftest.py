@@ -14,6 +14,7 @@ import pytest
 import uvicorn
 
 from services.core.app import create_app
+from services.core.server import core_config
 from services.core.settings import CoreSettings
 from services.runtime import Node, NodeSettings
 from services.runtime.ports import free_port_block
@@ -28,6 +29,13 @@ os.environ["SKYDECK_FOXGLOVE_PORT"] = "0"
 def free_port() -> int:
     """A TCP port free on loopback right now."""
     return free_port_block(1)
+
+
+def listening_socket() -> socket.socket:
+    """A TCP socket listening on a free loopback port (a protocol endpoint's, held from here)."""
+    sock = held_socket()
+    sock.listen(128)
+    return sock
 
 
 def held_socket(port: int = 0) -> socket.socket:
@@ -101,9 +109,13 @@ async def await_registered(core_url: str, names: set[str], timeout_s: float) -> 
 class CoreProcess:
     """A real core on uvicorn, served from the test's event loop; can be stopped and restarted."""
 
-    def __init__(self, port: int | None = None, **settings: object) -> None:
+    def __init__(
+        self, port: int | None = None, *, endpoint_sockets: dict[str, socket.socket] | None = None, **settings: object
+    ) -> None:
         # A new core holds a free port from here; a restart on a given port binds it in start().
+        # So do its protocol endpoints when given as listening sockets (see listening_socket).
         self._socket: socket.socket | None = None
+        self._endpoint_sockets = endpoint_sockets
         if port is None:
             self._socket = held_socket()
             port = self._socket.getsockname()[1]
@@ -116,14 +128,9 @@ class CoreProcess:
         self._task: asyncio.Task[None] | None = None
 
     async def start(self) -> None:
-        self.app = create_app(self.settings)
-        config = uvicorn.Config(
-            self.app,
-            log_level="warning",
-            ws_max_size=self.settings.max_message_bytes,
-            ws_per_message_deflate=False,
-        )
-        self._server = uvicorn.Server(config)
+        self.app = create_app(self.settings, endpoint_sockets=self._endpoint_sockets)
+        self._endpoint_sockets = None  # the app's now; a restart binds the settings' ports
+        self._server = uvicorn.Server(core_config(self.app, self.settings))
         sock = self._socket if self._socket is not None else await held_again(self.port)
         self._socket = None  # the server's now: it closes it when it stops
         self._task = await serve_on(self._server, sock)

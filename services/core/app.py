@@ -67,6 +67,7 @@ class CoreApp(FastAPI):
 
     def __init__(self, *, max_message_bytes: int, **kwargs: Any) -> None:
         super().__init__(**kwargs)
+        self.max_message_bytes = max_message_bytes
         self._checked = edge_checks(self._dispatch, max_message_bytes)
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:

@@ -19,7 +19,7 @@ from starlette.websockets import WebSocket
 from services.core.core_node import CORE_NODE, CoreNode
 from services.core.gateway_topic import GatewayTopic, declared_type
 from services.core.registry import Registry
-from services.core.service_calls import ServiceCallFailed, ServiceCalls
+from services.core.service_calls import ServiceCallFailed, ServiceCalls, ServiceReply
 from services.core.settings import CoreSettings
 from services.runtime.auth import presented_token
 from services.runtime.edge.topic_socket import serve_topic_socket
@@ -31,6 +31,10 @@ __all__ = ["Gateway", "ServiceCallsFirst"]
 
 def _error(status_code: int, detail: str) -> JSONResponse:
     return JSONResponse({"detail": detail}, status_code=status_code)
+
+
+def _error_body(detail: str) -> bytes:
+    return bytes(JSONResponse({"detail": detail}).body)  # rendered as FastAPI renders its errors
 
 
 class Gateway:
@@ -58,16 +62,18 @@ class Gateway:
         return await self._latest(name)
 
     async def _call_service(self, name: str, request: Request) -> Response:
-        try:
-            reply = await self.calls.call(
-                name,
-                await request.body(),
-                token=presented_token(request),
-                content_type=request.headers.get("content-type"),
-            )
-        except ServiceCallFailed as failed:
-            return _error(failed.http_status, str(failed))
+        reply = await self.forward(
+            name, await request.body(), token=presented_token(request), content_type=request.headers.get("content-type")
+        )
         return Response(reply.body, status_code=reply.status, media_type=reply.content_type)
+
+    async def forward(self, name: str, body: bytes, *, token: str, content_type: str | None) -> ServiceReply:
+        """An HTTP client's call of service ``name``: the service's reply, or why none came (a
+        JSON ``detail`` with the status of :mod:`services.core.service_calls`)."""
+        try:
+            return await self.calls.call(name, body, token=token, content_type=content_type)
+        except ServiceCallFailed as failed:
+            return ServiceReply(failed.http_status, _error_body(str(failed)))
 
     async def latest_frame(self, name: str) -> bytes | None:
         """The latest message of topic ``name`` (JSON), from the core or a publisher, if any."""
@@ -127,12 +133,14 @@ class ServiceCallsFirst:
 
     def takes(self, scope: Scope) -> bool:
         """Whether ``scope`` is a POST to a registered service (while the gateway runs)."""
-        return (
-            scope["type"] == "http"
-            and scope["method"] == "POST"
-            and self._gateway() is not None
-            and self._registry.service(scope["path"]) is not None
-        )
+        return scope["type"] == "http" and scope["method"] == "POST" and self.gateway_for(scope["path"]) is not None
+
+    def gateway_for(self, path: str) -> Gateway | None:
+        """The gateway, if ``path`` names a registered service and the gateway runs."""
+        gateway = self._gateway()
+        if gateway is None or self._registry.service(path) is None:
+            return None
+        return gateway
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         gateway = self._gateway()

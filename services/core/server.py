@@ -10,15 +10,17 @@ import socket
 from collections.abc import Iterator
 
 import uvicorn
+from starlette.types import ASGIApp
 
 from services.core.app import create_app
+from services.core.gateway_protocol import GatewayHttpProtocol
 from services.core.protocols.servers import bind_endpoints
 from services.core.settings import CoreSettings
 from services.runtime.errors import NodeError
 from services.runtime.executor import configure_logging, run
 from services.runtime.server import bind
 
-__all__ = ["serve"]
+__all__ = ["core_config", "serve"]
 
 
 class _Server(uvicorn.Server):
@@ -59,8 +61,16 @@ def serve(settings: CoreSettings | None = None) -> None:
     log.info("core at http://%s:%d (dashboard /, every command /docs)", settings.host, settings.port)
     for name, sock in endpoint_sockets.items():
         log.info("%s endpoint at ws://%s:%d", name, settings.host, sock.getsockname()[1])
-    config = uvicorn.Config(
-        create_app(settings, endpoint_sockets=endpoint_sockets),
+    config = core_config(create_app(settings, endpoint_sockets=endpoint_sockets), settings)
+    run(_Server(config).serve(sockets=[core_socket]))
+
+
+def core_config(app: ASGIApp, settings: CoreSettings) -> uvicorn.Config:
+    """uvicorn's settings for the core's app: its connections start on the gateway's protocol
+    (:mod:`services.core.gateway_protocol`: service calls forwarded below ASGI)."""
+    return uvicorn.Config(
+        app,
+        http=GatewayHttpProtocol,
         log_level="warning",
         access_log=False,
         ws_max_size=settings.max_message_bytes,
@@ -68,7 +78,6 @@ def serve(settings: CoreSettings | None = None) -> None:
         ws_ping_timeout=settings.ping_timeout_s,
         ws_per_message_deflate=False,
     )
-    run(_Server(config).serve(sockets=[core_socket]))
 
 
 def _listen(settings: CoreSettings) -> socket.socket:

@@ -21,6 +21,7 @@ __all__ = [
     "TOKEN_QUERY_PARAMETER",
     "WEBSOCKET_CLIENT_LOGGER",
     "RedactTokens",
+    "bearer_token",
     "presented_token",
     "token_required",
     "token_is_valid",
@@ -30,12 +31,17 @@ __all__ = [
 NOT_AUTHORISED = "publishing and service calls need the token: Authorization: Bearer TOKEN or ?token=TOKEN"
 
 
+def bearer_token(authorization: str) -> str:
+    """The token of an ``Authorization: Bearer TOKEN`` header's value, or ``""``."""
+    scheme, _, value = authorization.partition(" ")
+    return value.strip() if scheme.lower() == "bearer" and value else ""
+
+
 def presented_token(connection: HTTPConnection) -> str:
     """The token a request or WebSocket presents (header first, then the query), or ``""``."""
-    header = connection.headers.get("authorization", "")
-    scheme, _, value = header.partition(" ")
-    if scheme.lower() == "bearer" and value:
-        return value.strip()
+    token = bearer_token(connection.headers.get("authorization", ""))
+    if token:
+        return token
     if not connection.scope.get("query_string"):
         return ""  # no query to parse (a few percent of a forwarded call's work in the core)
     return connection.query_params.get(TOKEN_QUERY_PARAMETER, "")

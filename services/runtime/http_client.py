@@ -38,6 +38,7 @@ __all__ = ["HttpClient", "HttpError", "HttpReply", "HttpTimeout", "HttpUnreachab
 _MAX_IDLE_S = 4.0
 _MAX_IDLE_PER_ORIGIN = 8
 MAX_REPLY_BYTES = 64 * 1024 * 1024
+_MAX_KNOWN_URLS = 1024
 
 
 class HttpError(SkydeckError):
@@ -69,7 +70,11 @@ class HttpReply:
 class _Connection(asyncio.Protocol):
     """One keep-alive connection; parses one reply at a time."""
 
-    def __init__(self) -> None:
+    def __init__(self, loop: asyncio.AbstractEventLoop) -> None:
+        # The loop it was made on, kept: on Python 3.11 every asyncio.get_running_loop() is a
+        # getpid() system call, six of them per forwarded call before this.
+        self._loop = loop
+        self._timer: asyncio.TimerHandle | None = None
         self.transport: asyncio.Transport | None = None
         self.idle_since = 0.0
         self.received_any = False
@@ -113,6 +118,7 @@ class _Connection(asyncio.Protocol):
 
     def on_message_complete(self) -> None:
         reply = HttpReply(self._parser.get_status_code(), self._headers, b"".join(self._body))
+        self._stop_timer()
         if not self._parser.should_keep_alive():
             self.close()
         if self._reply is not None and not self._reply.done():
@@ -129,14 +135,16 @@ class _Connection(asyncio.Protocol):
             and time.monotonic() - self.idle_since < _MAX_IDLE_S
         )
 
-    def send(self, request: bytes) -> asyncio.Future[HttpReply]:
-        assert self.transport is not None
-        self._parser = httptools.HttpResponseParser(self)
+    def send(self, request: bytes, timeout_s: float) -> asyncio.Future[HttpReply]:
+        """Write ``request``; the future fails with :class:`HttpTimeout` if no whole reply comes
+        within ``timeout_s`` (one timer on the loop, not an ``asyncio.timeout`` per call)."""
+        assert self.transport is not None  # the parser goes on from the last reply (keep-alive)
         self._headers = {}
         self._body = []
         self._size = 0
         self.received_any = False
-        self._reply = asyncio.get_running_loop().create_future()
+        self._reply = self._loop.create_future()
+        self._timer = self._loop.call_later(max(timeout_s, 0.0), self._time_out)
         self.transport.write(request)
         return self._reply
 
@@ -146,8 +154,18 @@ class _Connection(asyncio.Protocol):
 
     def close(self) -> None:
         self._closed = True
+        self._stop_timer()
         if self.transport is not None:
             self.transport.close()
+
+    def _time_out(self) -> None:
+        self._timer = None
+        self._fail(HttpTimeout())
+
+    def _stop_timer(self) -> None:
+        if self._timer is not None:
+            self._timer.cancel()
+            self._timer = None
 
     def _fail(self, error: HttpError) -> None:
         self.close()
@@ -161,6 +179,7 @@ class HttpClient:
     def __init__(self, headers: Mapping[str, str] | None = None) -> None:
         self._default_headers = "".join(f"{name}: {value}\r\n" for name, value in (headers or {}).items())
         self._idle: dict[tuple[str, int], list[_Connection]] = {}
+        self._request_lines: dict[tuple[str, str], tuple[tuple[str, int], str]] = {}
         self._closed = False
 
     async def get(self, url: str, *, timeout_s: float) -> HttpReply:
@@ -183,31 +202,42 @@ class HttpClient:
         """Send one request and return the whole reply (any status)."""
         if self._closed:
             raise HttpUnreachable("the HTTP client is closed")
-        origin, target = _split(url)
+        origin, request_line = self._request_line(method, url)
         payload = body.encode() if isinstance(body, str) else body
         extra = headers or {}
         if any("\r" in text or "\n" in text for item in extra.items() for text in item):
             raise ValueError("an HTTP header name or value holds a line break")
         if method == "POST" and not any(name.lower() == "content-type" for name in extra):
             extra = {**extra, "Content-Type": "application/json"}
-        host = f"[{origin[0]}]" if ":" in origin[0] else origin[0]
         head = (
-            f"{method} {target} HTTP/1.1\r\nHost: {host}:{origin[1]}\r\n{self._default_headers}"
+            request_line
             + "".join(f"{name}: {value}\r\n" for name, value in extra.items())
             + f"Content-Length: {len(payload)}\r\n\r\n"
         )
         request = head.encode("latin-1") + payload
         try:
-            async with asyncio.timeout(timeout_s):
-                return await self._exchange(origin, request)
-        except TimeoutError:
+            return await self._exchange(origin, request, time.monotonic() + timeout_s)
+        except (HttpTimeout, TimeoutError):
             raise HttpTimeout(f"no reply from {url} within {timeout_s:g} s") from None
 
-    async def _exchange(self, origin: tuple[str, int], request: bytes) -> HttpReply:
+    def _request_line(self, method: str, url: str) -> tuple[tuple[str, int], str]:
+        """Where ``url`` is, and the request's first lines up to its own headers (kept per URL:
+        parsing a URL is a tenth of a forwarded call's work, and the core calls few URLs)."""
+        known = self._request_lines.get((method, url))
+        if known is None:
+            origin, target = _split(url)
+            host = f"[{origin[0]}]" if ":" in origin[0] else origin[0]
+            known = origin, f"{method} {target} HTTP/1.1\r\nHost: {host}:{origin[1]}\r\n{self._default_headers}"
+            if len(self._request_lines) >= _MAX_KNOWN_URLS:
+                self._request_lines.clear()
+            self._request_lines[(method, url)] = known
+        return known
+
+    async def _exchange(self, origin: tuple[str, int], request: bytes, deadline: float) -> HttpReply:
         while True:
-            connection, reused = await self._connection(origin)
+            connection, reused = await self._connection(origin, deadline)
             try:
-                reply = await connection.send(request)
+                reply = await connection.send(request, deadline - time.monotonic())
             except HttpUnreachable:
                 # A kept-alive connection the server dropped while idle: it never saw the
                 # request, so sending it again on a new connection cannot run it twice.
@@ -226,15 +256,17 @@ class HttpClient:
                     connection.close()
             return reply
 
-    async def _connection(self, origin: tuple[str, int]) -> tuple[_Connection, bool]:
+    async def _connection(self, origin: tuple[str, int], deadline: float) -> tuple[_Connection, bool]:
         pool = self._idle.get(origin)
         while pool:
             connection = pool.pop()
             if connection.usable:
                 return connection, True
             connection.close()
+        loop = asyncio.get_running_loop()
         try:
-            _, connection = await asyncio.get_running_loop().create_connection(_Connection, *origin)
+            async with asyncio.timeout(deadline - time.monotonic()):
+                _, connection = await loop.create_connection(lambda: _Connection(loop), *origin)
         except OSError as error:
             raise HttpUnreachable(f"cannot connect to {origin[0]}:{origin[1]}: {error.strerror or error}") from None
         return connection, False

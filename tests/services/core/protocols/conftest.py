@@ -24,7 +24,7 @@ from shared_models.builtin_interfaces import Time
 from shared_models.geometry_msgs import Point, Pose, PoseStamped, Twist
 from shared_models.std_msgs import Header, String
 from shared_models.std_srvs import Trigger, TriggerResponse
-from tests.conftest import CoreProcess, free_port, wait_until
+from tests.conftest import CoreProcess, listening_socket, wait_until
 
 CLIENTS = Path(__file__).resolve().parents[3] / "clients"
 NODE = shutil.which("node")
@@ -128,8 +128,11 @@ class ClientRun:
 
 
 async def _start_bridge(token: str = "", **settings: object) -> AsyncIterator[Bridge]:
-    rosbridge_port, foxglove_port = free_port(), free_port()
-    core = CoreProcess(rosbridge_port=rosbridge_port, foxglove_port=foxglove_port, token=token, **settings)
+    sockets = {"rosbridge": listening_socket(), "foxglove": listening_socket()}
+    rosbridge_port, foxglove_port = (sock.getsockname()[1] for sock in sockets.values())
+    core = CoreProcess(
+        endpoint_sockets=sockets, rosbridge_port=rosbridge_port, foxglove_port=foxglove_port, token=token, **settings
+    )
     await core.start()
     drone = Drone(NodeSettings(core_url=core.url, port=0, token=token, ping_interval_s=1.0, ping_timeout_s=2.0))
     await drone.start()
