@@ -19,7 +19,7 @@ from shared_models.builtin_interfaces import Time
 from shared_models.geometry_msgs import Point, Pose, PoseStamped
 from shared_models.std_msgs import Header
 from tests.conftest import free_port_block
-from tests.web_ui.conftest import Recorder
+from tests.web_ui.conftest import Recorder, open_dashboard
 from tests.web_ui.system import REPO, System
 
 pytestmark = [pytest.mark.browser, pytest.mark.timeout(120)]
@@ -67,13 +67,10 @@ def recordings(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Syste
 @pytest.fixture
 def page(recordings, browser) -> Iterator[tuple[object, Recorder]]:  # type: ignore[no-untyped-def]
     system, _, _ = recordings
-    context = browser.new_context(viewport={"width": 1440, "height": 900})
-    opened = context.new_page()
-    seen = Recorder()
-    seen.attach(opened)
-    opened.goto(system.url + "/")
-    yield opened, seen
-    context.close()
+    # Ready once main.js has set window.skydeck (after config.js's top-level await, which can be
+    # after the load event): a test's predicate on window.skydeck.pose before then throws.
+    with open_dashboard(browser, system.url, "window.skydeck !== undefined") as opened:
+        yield opened
 
 
 def test_the_views_follow_a_recording_being_played(page) -> None:  # type: ignore[no-untyped-def]
