@@ -59,9 +59,11 @@ _THREE_DIR = _WEB_UI / "vendor" / "node_modules" / "three"  # the 3D view's libr
 
 
 class CoreApp(FastAPI):
-    """The core's FastAPI app. Every request meets the edge checks first (:func:`edge_checks`:
-    origin, body size); then a service call through the gateway is taken before FastAPI's own
-    layers (:class:`~services.core.gateway.ServiceCallsFirst`), and the rest goes through FastAPI."""
+    """The core's FastAPI app. Every request that reaches it (plain service calls are forwarded
+    before, by :mod:`services.core.gateway_protocol`) meets the edge checks first
+    (:func:`edge_checks`: origin, body size); then a service call through the gateway is taken
+    before FastAPI's own layers (:class:`~services.core.gateway.ServiceCallsFirst`), and the rest
+    goes through FastAPI."""
 
     service_calls_first: ServiceCallsFirst | None = None
 

@@ -19,7 +19,7 @@ from starlette.websockets import WebSocket
 from services.core.core_node import CORE_NODE, CoreNode
 from services.core.gateway_topic import GatewayTopic, declared_type
 from services.core.registry import Registry
-from services.core.service_calls import ServiceCallFailed, ServiceCalls, ServiceReply
+from services.core.service_calls import ServiceCallFailed, ServiceCalls, ServiceReply, error_reply
 from services.core.settings import CoreSettings
 from services.runtime.auth import presented_token
 from services.runtime.edge.topic_socket import serve_topic_socket
@@ -31,10 +31,6 @@ __all__ = ["Gateway", "ServiceCallsFirst"]
 
 def _error(status_code: int, detail: str) -> JSONResponse:
     return JSONResponse({"detail": detail}, status_code=status_code)
-
-
-def _error_body(detail: str) -> bytes:
-    return bytes(JSONResponse({"detail": detail}).body)  # rendered as FastAPI renders its errors
 
 
 class Gateway:
@@ -73,7 +69,7 @@ class Gateway:
         try:
             return await self.calls.call(name, body, token=token, content_type=content_type)
         except ServiceCallFailed as failed:
-            return ServiceReply(failed.http_status, _error_body(str(failed)))
+            return error_reply(failed.http_status, str(failed))
 
     async def latest_frame(self, name: str) -> bytes | None:
         """The latest message of topic ``name`` (JSON), from the core or a publisher, if any."""

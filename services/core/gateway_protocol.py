@@ -82,6 +82,7 @@ class GatewayHttpProtocol(asyncio.Protocol):
         self._parser = httptools.HttpRequestParser(self)
         self._transport: asyncio.Transport | None = None
         self._received: list[bytes] = []  # every byte of the request being read (for a hand-off)
+        self._received_bytes = 0
         self._call: _Call | None = None
         self._calls_begun = 0  # in the bytes fed since the last reply: more than one is pipelining
         self._waiting: list[bytes] = []  # bytes that came while a call was forwarded
@@ -111,6 +112,7 @@ class GatewayHttpProtocol(asyncio.Protocol):
             self._transport.pause_reading()  # type: ignore[union-attr]  # read on after the reply
             return
         self._received.append(data)
+        self._received_bytes += len(data)
         try:
             self._parser.feed_data(data)
         except (httptools.HttpParserError, httptools.HttpParserUpgrade):
@@ -119,7 +121,7 @@ class GatewayHttpProtocol(asyncio.Protocol):
         call = self._call
         if call is None:
             return
-        if not call.fast or self._calls_begun > 1 or sum(map(len, self._received)) > self._max_bytes + 65536:
+        if not call.fast or self._calls_begun > 1 or self._received_bytes > self._max_bytes + 65536:
             self._hand_off()
         elif call.complete:
             self._forward(call)
@@ -127,7 +129,6 @@ class GatewayHttpProtocol(asyncio.Protocol):
     def connection_lost(self, exc: Exception | None) -> None:
         self._server_state.connections.discard(self)  # type: ignore[arg-type]
         self._cancel_idle_timer()
-        self._closing = True
 
     def shutdown(self) -> None:
         """The server stops: an idle connection closes now, a busy one after its reply."""
@@ -210,6 +211,7 @@ class GatewayHttpProtocol(asyncio.Protocol):
         self._write(reply)
         self._forwarding = False
         self._received.clear()
+        self._received_bytes = 0
         self._call = None
         self._calls_begun = 0
         transport = self._transport
@@ -253,6 +255,7 @@ class GatewayHttpProtocol(asyncio.Protocol):
         uvicorn_protocol.connection_made(transport)
         received = b"".join(self._received)
         self._received.clear()
+        self._received_bytes = 0
         if received and not transport.is_closing():
             uvicorn_protocol.data_received(received)
 
@@ -270,9 +273,12 @@ class GatewayHttpProtocol(asyncio.Protocol):
     def _idle(self) -> None:
         assert self._loop is not None and self._transport is not None
         timeout_s = self._config.timeout_keep_alive
-        idle_s = self._loop.time() - self._idle_since
-        if self._forwarding or self._received or idle_s < timeout_s:
-            self._arm_idle_timer(timeout_s if self._forwarding or self._received else timeout_s - idle_s)
-        else:
-            self._idle_timer = None
-            self._transport.close()
+        if self._forwarding or self._received:  # busy: not idle at all
+            self._arm_idle_timer(timeout_s)
+            return
+        left_s = timeout_s - (self._loop.time() - self._idle_since)
+        if left_s > 0:
+            self._arm_idle_timer(left_s)
+            return
+        self._idle_timer = None
+        self._transport.close()

@@ -33,7 +33,7 @@ from services.runtime.errors import ServiceError
 from services.runtime.http_client import HttpClient, HttpError, HttpTimeout
 from shared_models.errors import SkydeckError
 
-__all__ = ["ServiceCallFailed", "ServiceCalls", "ServiceReply"]
+__all__ = ["ServiceCallFailed", "ServiceCalls", "ServiceReply", "error_reply"]
 
 JSON = "application/json"
 logger = logging.getLogger("skydeck.core")
@@ -139,7 +139,7 @@ class ServiceCalls:
         timeout_s = timeout_s or self._settings.gateway_timeout_s
         service = self._guests.service(name)
         if service is None:
-            return _error_reply(404, f"no service {name}: see `skydeck service list`")
+            return error_reply(404, f"no service {name}: see `skydeck service list`")
         try:
             request = service.srv_type.Request.model_validate_json(body or b"{}")
         except ValidationError as error:
@@ -152,11 +152,12 @@ class ServiceCalls:
             async with asyncio.timeout(timeout_s):
                 response = await service.handle(request, logger)
         except TimeoutError:
-            return _error_reply(504, f"{name} did not answer within {timeout_s:g} s")
+            return error_reply(504, f"{name} did not answer within {timeout_s:g} s")
         except SkydeckError as error:
-            return _error_reply(error.http_status, str(error))
+            return error_reply(error.http_status, str(error))
         return ServiceReply(200, response.model_dump_json().encode())
 
 
-def _error_reply(status: int, detail: str) -> ServiceReply:
+def error_reply(status: int, detail: str) -> ServiceReply:
+    """A reply saying why a call was not answered: FastAPI's ``{"detail": ...}`` with ``status``."""
     return ServiceReply(status, json.dumps({"detail": detail}).encode())

@@ -1,7 +1,9 @@
 """The checks every request to a Skydeck server meets before anything else, in one place for
 the core and every node: a POST or WebSocket from a browser page of another site is refused
 (:class:`~services.runtime.origin.SameOriginOnly`, 403 / close 1008), then a body over the
-size limit (:class:`~services.runtime.limits.BodySizeLimit`, 413)."""
+size limit (:class:`~services.runtime.limits.BodySizeLimit`, 413). The core's HTTP protocol
+(:mod:`services.core.gateway_protocol`) answers below ASGI only calls these checks would pass
+(no ``Origin``, a declared length within the limit) and hands every other request to them."""
 
 from __future__ import annotations
 

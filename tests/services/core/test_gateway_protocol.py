@@ -115,8 +115,7 @@ async def test_edge_checks_and_errors_answer_as_before() -> None:
     core = CoreProcess(token="s3cret", max_message_bytes=4096)
     await core.start()
     try:
-        settings_token = {"token": "s3cret"}
-        node = await start_node_on(core, settings_token)
+        node = await start_node_on(core, {"token": "s3cret"})
         reader, writer = await asyncio.open_connection("127.0.0.1", core.port)
         cases = [
             (post("/counter/count"), 401),  # no token: refused by the core
@@ -157,6 +156,53 @@ async def test_a_node_gone_is_503_and_a_malformed_request_400(core, start_node) 
     writer.write(b"POST /counter/count HTTP/1.1\r\nContent-Length: x\r\n\r\n")
     [bad] = await read_replies(reader, 1)
     assert bad.status == 400
+    writer.close()
+
+
+class Slow(Node):
+    """A service that answers when the test lets it."""
+
+    def __init__(self, settings) -> None:
+        super().__init__("slow", settings=settings)
+        self.entered = asyncio.Event()
+        self.release = asyncio.Event()
+        self.create_service(Trigger, "/slow/call", self.call)
+
+    async def call(self, request):
+        self.entered.set()
+        await self.release.wait()
+        return TriggerResponse(success=True, message="late")
+
+
+async def test_at_shutdown_a_call_in_flight_is_answered_then_its_connection_closed(core, start_node) -> None:
+    slow = await start_node(Slow)
+    reader, writer = await asyncio.open_connection("127.0.0.1", core.port)
+    writer.write(post("/slow/call"))
+    await asyncio.wait_for(slow.entered.wait(), 10)
+    connections = core._server.server_state.connections  # type: ignore[union-attr]
+    [connection] = [c for c in connections if isinstance(c, GatewayHttpProtocol)]
+    core._server.should_exit = True  # type: ignore[union-attr]  # a graceful stop, as on SIGTERM
+    await wait_until(lambda: connection._closing, what="uvicorn to ask the connection to shut down")
+    slow.release.set()
+    [reply] = await read_replies(reader, 1)
+    assert reply.status == 200 and json.loads(reply.body)["message"] == "late"
+    assert await asyncio.wait_for(reader.read(), 10) == b""  # then closed, not kept alive
+    writer.close()
+
+
+async def test_a_fault_of_the_core_while_forwarding_is_a_500_and_a_closed_connection(core, start_node, caplog) -> None:
+    await start_node(Counter)
+
+    async def broken(*args: object, **kwargs: object) -> object:
+        raise RuntimeError("a bug in the forward path")
+
+    core.app.state.gateway.forward = broken  # type: ignore[union-attr]
+    reader, writer = await asyncio.open_connection("127.0.0.1", core.port)
+    writer.write(post("/counter/count"))
+    [reply] = await read_replies(reader, 1)
+    assert (reply.status, reply.body) == (500, b"Internal Server Error")
+    assert await asyncio.wait_for(reader.read(), 10) == b""
+    assert "forwarding a call to /counter/count failed" in caplog.text
     writer.close()
 
 
