@@ -85,7 +85,7 @@ async def test_record_the_mission_then_play_it_into_a_fresh_core(launch, tmp_pat
         await wait_until(lambda: len(counter.frames["/clock"]) > 0, 10, "the counter to get /clock")
         started = Time.model_validate_json(counter.frames["/clock"][-1][0]).to_sec()
         await wait_until(
-            lambda: Time.model_validate_json(counter.frames["/clock"][-1][0]).to_sec() >= started + SIM_SECONDS + 3,  # the recorder links a moment after it subscribes
+            lambda: Time.model_validate_json(counter.frames["/clock"][-1][0]).to_sec() >= started + SIM_SECONDS + 10,  # the recorder links a moment after it subscribes: 3.4 sim s at --speed max on a fast machine
             timeout_s=120,
             what=f"{SIM_SECONDS:g} s of sim time",
         )

@@ -184,7 +184,9 @@ def test_reset_builds_the_world_again_with_the_robot_at_its_start(room: System) 
     assert answer["success"] is True and "robots at their starts" in answer["message"]
     after = latest(room, "/simulator/world")
     assert after["id"] != before["id"] and after["build"] == before["build"] + 1
-    odom = wait_for(room, "/odom", lambda m: True)
+    # The latest /odom may still be the one published before the reset: take the next one.
+    stale_seq = latest(room, "/odom")["header"]["seq"]
+    odom = wait_for(room, "/odom", lambda m: m["header"]["seq"] > stale_seq)
     assert math.hypot(odom["pose"]["pose"]["position"]["x"], odom["pose"]["pose"]["position"]["y"]) < 0.01
 
 
