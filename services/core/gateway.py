@@ -71,6 +71,12 @@ class Gateway:
         except ServiceCallFailed as failed:
             return error_reply(failed.http_status, str(failed))
 
+    def forward_then(
+        self, name: str, body: bytes, *, token: str, content_type: str | None, then: Callable[[ServiceReply], None]
+    ) -> None:
+        """:meth:`forward` with the reply handed to ``then`` (see ServiceCalls.call_then)."""
+        self.calls.call_then(name, body, token=token, content_type=content_type, then=then)
+
     async def latest_frame(self, name: str) -> bytes | None:
         """The latest message of topic ``name`` (JSON), from the core or a publisher, if any."""
         endpoint = self._core.endpoint(name)

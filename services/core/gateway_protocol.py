@@ -48,15 +48,17 @@ logger = logging.getLogger("skydeck.core")
 # Request headers that take a call off the fast path (a browser's page, a streamed or held body).
 _DECLINED_HEADERS = frozenset({b"origin", b"transfer-encoding", b"expect"})
 _REASONS = {status.value: status.phrase.encode("ascii") for status in HTTPStatus}
+_default_headers_cache: list[Any] = [None, b""]  # uvicorn's default headers, and them as bytes
 
 
 class _Call:
     """The request being read: what the forward needs, and whether it may take the fast path."""
 
-    __slots__ = ("authorization", "body", "complete", "content_length", "content_type", "fast", "gateway", "url")
+    __slots__ = ("authorization", "body", "complete", "content_length", "content_type", "fast", "gateway", "name", "url")
 
     def __init__(self) -> None:
         self.url = b""
+        self.name = ""  # the url decoded, once it is known to be a service's
         self.body = b""
         self.authorization = ""
         self.content_type: str | None = None
@@ -174,7 +176,8 @@ class GatewayHttpProtocol(asyncio.Protocol):
         ):
             call.fast = False
             return
-        call.gateway = self._first.gateway_for(call.url.decode("latin-1"))
+        call.name = call.url.decode("latin-1")
+        call.gateway = self._first.gateway_for(call.name)
         call.fast = call.gateway is not None
 
     def on_body(self, body: bytes) -> None:
@@ -189,25 +192,21 @@ class GatewayHttpProtocol(asyncio.Protocol):
     # -- the fast path -------------------------------------------------------------------------
 
     def _forward(self, call: _Call) -> None:
-        self._forwarding = True
-        assert self._loop is not None
-        task = self._loop.create_task(self._answer(call))
-        self._server_state.tasks.add(task)
-        task.add_done_callback(self._server_state.tasks.discard)
-
-    async def _answer(self, call: _Call) -> None:
         assert call.gateway is not None
+        self._forwarding = True
         try:
-            reply = await call.gateway.forward(
-                call.url.decode("latin-1"),
-                call.body,
-                token=bearer_token(call.authorization),
-                content_type=call.content_type,
+            call.gateway.forward_then(
+                call.name, call.body, token=bearer_token(call.authorization), content_type=call.content_type, then=self._answer
             )
         except Exception:  # a fault of ours: said in the log, as uvicorn says an app's
-            logger.exception("forwarding a call to %s failed", call.url.decode("latin-1"))
+            logger.exception("forwarding a call to %s failed", call.name)
             self._closing = True
-            reply = ServiceReply(500, b"Internal Server Error", "text/plain; charset=utf-8")
+            self._answer(ServiceReply(500, b"Internal Server Error", "text/plain; charset=utf-8"))
+
+    def _answer(self, reply: ServiceReply) -> None:
+        """The call's reply, from the node reply's I/O callback (or at once, for a refusal)."""
+        if not self._forwarding:
+            return  # answered already (a fault after the forward had begun)
         self._write(reply)
         self._forwarding = False
         self._received.clear()
@@ -232,13 +231,19 @@ class GatewayHttpProtocol(asyncio.Protocol):
         transport = self._transport
         if transport is None or transport.is_closing():
             return  # the client left: the node's reply has nowhere to go
-        head = [b"HTTP/1.1 %d %s\r\n" % (reply.status, _REASONS.get(reply.status, b""))]
-        for name, value in self._server_state.default_headers:  # server, date: as uvicorn's replies
-            head.append(b"%s: %s\r\n" % (name, value))
-        if reply.content_type:
-            head.append(b"content-type: %s\r\n" % reply.content_type.encode("latin-1"))
-        head.append(b"content-length: %d\r\n\r\n" % len(reply.body))
-        transport.write(b"".join(head) + reply.body)
+        content_type = b"content-type: %s\r\n" % reply.content_type.encode("latin-1") if reply.content_type else b""
+        transport.write(
+            b"HTTP/1.1 %d %s\r\n%s%scontent-length: %d\r\n\r\n%s"
+            % (reply.status, _REASONS.get(reply.status, b""), self._default_headers(), content_type, len(reply.body), reply.body)
+        )
+
+    def _default_headers(self) -> bytes:
+        """uvicorn's headers for every reply (date, and server unless turned off), as bytes: the
+        list is replaced, not changed, when the date does (once a second), so it is kept by identity."""
+        headers = self._server_state.default_headers
+        if headers is not _default_headers_cache[0]:
+            _default_headers_cache[:] = [headers, b"".join(b"%s: %s\r\n" % pair for pair in headers)]
+        return _default_headers_cache[1]
 
     # -- everything else: uvicorn's protocol ---------------------------------------------------
 

@@ -52,7 +52,7 @@ class Registry:
         # topic -> names of the nodes publishing / subscribing to it (insertion-ordered)
         self._publishers: dict[str, dict[str, None]] = {}
         self._subscribers: dict[str, dict[str, None]] = {}
-        self._services: dict[str, str] = {}  # service -> the node hosting it
+        self._services: dict[str, tuple[Entity, str]] = {}  # service -> it and the node hosting it
         self._watchers: list[Callable[[], None]] = []
 
     def watch(self, on_change: Callable[[], None]) -> Callable[[], None]:
@@ -118,7 +118,7 @@ class Registry:
         for entity in description.subscriptions:
             self._subscribers.setdefault(entity.name, {})[description.name] = None
         for entity in description.services:
-            self._services[entity.name] = description.name
+            self._services[entity.name] = (entity, description.name)
 
     def _unindex(self, description: NodeDescription) -> None:
         for index, entities in ((self._publishers, description.publications), (self._subscribers, description.subscriptions)):
@@ -129,7 +129,8 @@ class Registry:
                     if not names:
                         del index[entity.name]
         for entity in description.services:
-            if self._services.get(entity.name) == description.name:
+            hosted = self._services.get(entity.name)
+            if hosted is not None and hosted[1] == description.name:
                 del self._services[entity.name]
 
     def _changed(self, before: NodeDescription | None, record: NodeRecord) -> None:
@@ -194,11 +195,11 @@ class Registry:
 
     def service(self, name: str) -> tuple[Entity, NodeRecord] | None:
         """The service called ``name`` and the node hosting it."""
-        node = self._services.get(name)
-        if node is None:
+        hosted = self._services.get(name)  # looked up on every call through the core: one dict get
+        if hosted is None:
             return None
-        record = self.nodes[node]
-        return next(entity for entity in record.description.services if entity.name == name), record
+        entity, node = hosted
+        return entity, self.nodes[node]
 
     def graph(self) -> dict[str, Any]:
         """Nodes, topics (type, publishers, subscribers, rate) and services, as ``/api/graph``."""

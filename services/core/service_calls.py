@@ -21,6 +21,7 @@ from __future__ import annotations
 import asyncio
 import json
 import logging
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from pydantic import ValidationError
@@ -30,7 +31,7 @@ from services.core.registry import Registry
 from services.core.settings import CoreSettings
 from services.runtime.auth import NOT_AUTHORISED, token_is_valid
 from services.runtime.errors import ServiceError
-from services.runtime.http_client import HttpClient, HttpError, HttpTimeout
+from services.runtime.http_client import HttpClient, HttpError, HttpReply, HttpTimeout, Outcome
 from shared_models.errors import SkydeckError
 
 __all__ = ["ServiceCallFailed", "ServiceCalls", "ServiceReply", "error_reply"]
@@ -77,6 +78,32 @@ class ServiceCallFailed(ServiceError):
         return self.status
 
 
+@dataclass(slots=True)
+class _Target:
+    """The node a call goes to, and the request's headers for it."""
+
+    service: str
+    node: str
+    url: str
+    headers: dict[str, str]
+
+    def failed(self, error: Exception, timeout_s: float) -> ServiceCallFailed:
+        """Why a call sent to the node got no reply (``error`` from the HTTP client)."""
+        name, node = self.service, self.node
+        if isinstance(error, ValueError):  # a ?token= with a line break: never put it into a header
+            return ServiceCallFailed(name, 400, "the token holds characters a token cannot have")
+        if isinstance(error, HttpTimeout):
+            return ServiceCallFailed(
+                name,
+                504,
+                f"{name} on node {node} did not answer within {timeout_s:g} s: "
+                f"is its handler stuck? see `skydeck node info {node}`",
+            )
+        return ServiceCallFailed(
+            name, 503, f"node {node} hosting {name} is not reachable at {self.url}: is it running? see `skydeck node list`"
+        )
+
+
 class ServiceCalls:
     """Routes a call to the node hosting the service (or answers it here for a guest)."""
 
@@ -85,6 +112,7 @@ class ServiceCalls:
         self._guests = guests
         self._settings = settings
         self._http = http
+        self._hosted_calls: set[asyncio.Task[None]] = set()  # call_then's, kept until they end
 
     async def call(
         self,
@@ -100,6 +128,49 @@ class ServiceCalls:
         Raises ServiceCallFailed when no service answered; see the module docstring.
         """
         timeout_s = timeout_s or self._settings.gateway_timeout_s
+        target = self._target(name, token=token, content_type=content_type)
+        if target is None:
+            return await self.call_hosted(name, body, timeout_s=timeout_s)
+        try:
+            reply = await self._http.post(target.url, body, headers=target.headers, timeout_s=timeout_s)
+        except (ValueError, HttpError) as error:
+            raise target.failed(error, timeout_s) from None
+        return ServiceReply(reply.status, reply.body, reply.headers.get("content-type"))
+
+    def call_then(
+        self, name: str, body: bytes, *, token: str, content_type: str | None, then: Callable[[ServiceReply], None]
+    ) -> None:
+        """:meth:`call`, for a caller that takes the reply in a callback (the core's HTTP
+        connections): ``then`` gets the service's reply, or an :func:`error_reply` saying why none
+        came. It is called from the node reply's own I/O callback, with no task and no turn of the
+        loop between (a forwarded call's busiest path: docs/performance.md)."""
+        timeout_s = self._settings.gateway_timeout_s
+        try:
+            target = self._target(name, token=token, content_type=content_type)
+        except ServiceCallFailed as failed:
+            then(error_reply(failed.http_status, str(failed)))
+            return
+        if target is None:
+            task = asyncio.get_running_loop().create_task(self._hosted_then(name, body, timeout_s, then))
+            self._hosted_calls.add(task)
+            task.add_done_callback(self._hosted_calls.discard)
+            return
+
+        def replied(outcome: Outcome) -> None:
+            if isinstance(outcome, HttpReply):
+                then(ServiceReply(outcome.status, outcome.body, outcome.headers.get("content-type")))
+            else:
+                failed = target.failed(outcome, timeout_s)
+                then(error_reply(failed.http_status, str(failed)))
+
+        try:
+            self._http.start("POST", target.url, body, headers=target.headers, timeout_s=timeout_s, on_done=replied)
+        except (ValueError, HttpError) as error:
+            refused = target.failed(error, timeout_s)
+            then(error_reply(refused.http_status, str(refused)))
+
+    def _target(self, name: str, *, token: str, content_type: str | None) -> _Target | None:
+        """Where a call of ``name`` goes (None: a service hosted here), or ServiceCallFailed."""
         found = self._registry.service(name)
         if found is None:
             if self._registry.topic_type(name) is not None:
@@ -110,29 +181,20 @@ class ServiceCalls:
         if not token_is_valid(self._settings.token, token):
             raise ServiceCallFailed(name, 401, NOT_AUTHORISED)
         _, record = found
-        node = record.description.name
         if record.description.url == self._guests.url:
-            return await self.call_hosted(name, body, timeout_s=timeout_s)
-        url = record.description.url.rstrip("/") + name
+            return None
         headers = {"content-type": content_type} if content_type else {}
         if token:
             headers["authorization"] = f"Bearer {token}"  # also when it came as ?token= (a browser)
+        return _Target(name, record.description.name, record.description.url.rstrip("/") + name, headers)
+
+    async def _hosted_then(self, name: str, body: bytes, timeout_s: float, then: Callable[[ServiceReply], None]) -> None:
         try:
-            reply = await self._http.post(url, body, headers=headers, timeout_s=timeout_s)
-        except ValueError:  # a ?token= with a line break: never put it into a header
-            raise ServiceCallFailed(name, 400, "the token holds characters a token cannot have") from None
-        except HttpTimeout:
-            raise ServiceCallFailed(
-                name,
-                504,
-                f"{name} on node {node} did not answer within {timeout_s:g} s: "
-                f"is its handler stuck? see `skydeck node info {node}`",
-            ) from None
-        except HttpError:
-            raise ServiceCallFailed(
-                name, 503, f"node {node} hosting {name} is not reachable at {url}: is it running? see `skydeck node list`"
-            ) from None
-        return ServiceReply(reply.status, reply.body, reply.headers.get("content-type"))
+            reply = await self.call_hosted(name, body, timeout_s=timeout_s)
+        except Exception:  # a fault of ours: said in the log, as uvicorn says an app's
+            logger.exception("calling %s, hosted by the core, failed", name)
+            reply = error_reply(500, f"{name} failed in the core: see its log")
+        then(reply)
 
     async def call_hosted(self, name: str, body: bytes, *, timeout_s: float | None = None) -> ServiceReply:
         """Answer a call to a service the core hosts for a guest, as a node's route would."""

@@ -21,8 +21,9 @@ from __future__ import annotations
 
 import asyncio
 import json
+import logging
 import time
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 from urllib.parse import urlsplit
@@ -31,7 +32,7 @@ import httptools
 
 from shared_models.errors import SkydeckError
 
-__all__ = ["HttpClient", "HttpError", "HttpReply", "HttpTimeout", "HttpUnreachable"]
+__all__ = ["HttpClient", "HttpError", "HttpReply", "HttpTimeout", "HttpUnreachable", "Outcome"]
 
 # uvicorn closes a keep-alive connection after 5 idle seconds; reusing one older than this
 # would race that close.
@@ -39,6 +40,8 @@ _MAX_IDLE_S = 4.0
 _MAX_IDLE_PER_ORIGIN = 8
 MAX_REPLY_BYTES = 64 * 1024 * 1024
 _MAX_KNOWN_URLS = 1024
+
+logger = logging.getLogger("skydeck.runtime")
 
 
 class HttpError(SkydeckError):
@@ -67,14 +70,22 @@ class HttpReply:
         return json.loads(self.body)
 
 
+Outcome = HttpReply | HttpError
+"""What a request came to: the reply (of any status), or why none came."""
+
+
 class _Connection(asyncio.Protocol):
-    """One keep-alive connection; parses one reply at a time."""
+    """One keep-alive connection; parses one reply at a time and hands it on from its I/O callback."""
 
     def __init__(self, loop: asyncio.AbstractEventLoop) -> None:
         # The loop it was made on, kept: on Python 3.11 every asyncio.get_running_loop() is a
         # getpid() system call, six of them per forwarded call before this.
         self._loop = loop
+        # One timer per connection, not one per request: it looks at the request waiting when it
+        # fires and times it out, or waits on for its deadline.
         self._timer: asyncio.TimerHandle | None = None
+        self._timer_at = 0.0
+        self._deadline = 0.0
         self.transport: asyncio.Transport | None = None
         self.idle_since = 0.0
         self.received_any = False
@@ -82,7 +93,7 @@ class _Connection(asyncio.Protocol):
         self._headers: dict[str, str] = {}
         self._body: list[bytes] = []
         self._size = 0
-        self._reply: asyncio.Future[HttpReply] | None = None
+        self._on_done: Callable[[Outcome], None] | None = None  # while a request awaits its reply
         self._closed = False
 
     # -- asyncio.Protocol -------------------------------------------------------------------
@@ -92,7 +103,7 @@ class _Connection(asyncio.Protocol):
 
     def data_received(self, data: bytes) -> None:
         self.received_any = True
-        if self._reply is None:  # bytes nobody asked for: the connection cannot be trusted
+        if self._on_done is None:  # bytes nobody asked for: the connection cannot be trusted
             self.close()
             return
         try:
@@ -118,11 +129,10 @@ class _Connection(asyncio.Protocol):
 
     def on_message_complete(self) -> None:
         reply = HttpReply(self._parser.get_status_code(), self._headers, b"".join(self._body))
-        self._stop_timer()
+        self.idle_since = time.monotonic()
         if not self._parser.should_keep_alive():
             self.close()
-        if self._reply is not None and not self._reply.done():
-            self._reply.set_result(reply)
+        self._finish(reply)
 
     # -- use ---------------------------------------------------------------------------------
 
@@ -135,22 +145,19 @@ class _Connection(asyncio.Protocol):
             and time.monotonic() - self.idle_since < _MAX_IDLE_S
         )
 
-    def send(self, request: bytes, timeout_s: float) -> asyncio.Future[HttpReply]:
-        """Write ``request``; the future fails with :class:`HttpTimeout` if no whole reply comes
-        within ``timeout_s`` (one timer on the loop, not an ``asyncio.timeout`` per call)."""
+    def send(self, request: bytes, timeout_s: float, on_done: Callable[[Outcome], None]) -> None:
+        """Write ``request``; ``on_done`` gets its reply, or :class:`HttpTimeout` if no whole reply
+        comes within ``timeout_s``, or :class:`HttpUnreachable`."""
         assert self.transport is not None  # the parser goes on from the last reply (keep-alive)
         self._headers = {}
         self._body = []
         self._size = 0
         self.received_any = False
-        self._reply = self._loop.create_future()
-        self._timer = self._loop.call_later(max(timeout_s, 0.0), self._time_out)
+        self._on_done = on_done
+        self._deadline = self._loop.time() + max(timeout_s, 0.0)
+        if self._timer is None or self._timer_at > self._deadline:
+            self._arm_timer()
         self.transport.write(request)
-        return self._reply
-
-    def release(self) -> None:
-        self._reply = None
-        self.idle_since = time.monotonic()
 
     def close(self) -> None:
         self._closed = True
@@ -158,8 +165,18 @@ class _Connection(asyncio.Protocol):
         if self.transport is not None:
             self.transport.close()
 
+    def _arm_timer(self) -> None:
+        self._stop_timer()
+        self._timer_at = self._deadline
+        self._timer = self._loop.call_at(self._deadline, self._time_out)
+
     def _time_out(self) -> None:
         self._timer = None
+        if self._on_done is None:
+            return  # no request waits: the next one arms the timer again
+        if self._loop.time() < self._deadline:
+            self._arm_timer()  # a later request's: wait on
+            return
         self._fail(HttpTimeout())
 
     def _stop_timer(self) -> None:
@@ -169,8 +186,98 @@ class _Connection(asyncio.Protocol):
 
     def _fail(self, error: HttpError) -> None:
         self.close()
-        if self._reply is not None and not self._reply.done():
-            self._reply.set_exception(error)
+        self._finish(error)
+
+    def _finish(self, outcome: Outcome) -> None:
+        on_done, self._on_done = self._on_done, None
+        if on_done is None:
+            return
+        try:
+            on_done(outcome)
+        except Exception:  # a fault of the caller's callback: said; this connection reads on
+            logger.exception("handling a reply of the HTTP client failed")
+
+
+class _Exchange:
+    """One request and its way to an outcome: on a kept-alive connection, else on a new one; a
+    kept-alive connection the server dropped while idle is tried again on a new one (it never saw
+    the request, so it cannot run twice)."""
+
+    __slots__ = (
+        "_client", "_connecting", "_connection", "_deadline", "_on_done", "_origin", "_request", "_reused", "_timeout_s", "_url"
+    )  # fmt: skip
+
+    def __init__(
+        self,
+        client: HttpClient,
+        origin: tuple[str, int],
+        request: bytes,
+        url: str,
+        timeout_s: float,
+        on_done: Callable[[Outcome], None],
+    ) -> None:
+        self._client = client
+        self._origin = origin
+        self._request = request
+        self._url = url
+        self._timeout_s = timeout_s
+        self._deadline = time.monotonic() + timeout_s
+        self._on_done = on_done
+        self._connection: _Connection | None = None
+        self._reused = False
+        self._connecting: asyncio.Task[None] | None = None
+
+    def start(self) -> None:
+        connection = self._client._pooled(self._origin)
+        if connection is None:
+            self._connecting = asyncio.get_running_loop().create_task(self._connect())
+        else:
+            self._send_on(connection, reused=True)
+
+    def abort(self) -> None:
+        """The caller gave up (cancelled): a reply that still comes has nowhere to go."""
+        self._on_done = _ignore
+        if self._connecting is not None:
+            self._connecting.cancel()
+        if self._connection is not None:
+            self._connection.close()  # spoilt: its reply would be read as the next request's
+
+    async def _connect(self) -> None:
+        loop = asyncio.get_running_loop()
+        try:
+            async with asyncio.timeout(self._deadline - time.monotonic()):
+                _, connection = await loop.create_connection(lambda: _Connection(loop), *self._origin)
+        except TimeoutError:
+            self._on_done(HttpTimeout(f"no reply from {self._url} within {self._timeout_s:g} s"))
+            return
+        except OSError as error:
+            where = f"{self._origin[0]}:{self._origin[1]}"
+            self._on_done(HttpUnreachable(f"cannot connect to {where}: {error.strerror or error}"))
+            return
+        self._connecting = None
+        self._send_on(connection, reused=False)
+
+    def _send_on(self, connection: _Connection, *, reused: bool) -> None:
+        self._connection = connection
+        self._reused = reused
+        connection.send(self._request, self._deadline - time.monotonic(), self._done)
+
+    def _done(self, outcome: Outcome) -> None:
+        connection = self._connection
+        assert connection is not None
+        self._connection = None
+        if isinstance(outcome, HttpReply):
+            self._client._keep(self._origin, connection)
+        elif isinstance(outcome, HttpTimeout):
+            outcome = HttpTimeout(f"no reply from {self._url} within {self._timeout_s:g} s")
+        elif self._reused and not connection.received_any:
+            self.start()  # a kept-alive connection dropped while idle: again, on another
+            return
+        self._on_done(outcome)
+
+
+def _ignore(outcome: Outcome) -> None:
+    pass
 
 
 class HttpClient:
@@ -200,25 +307,53 @@ class HttpClient:
         headers: Mapping[str, str] | None = None,
     ) -> HttpReply:
         """Send one request and return the whole reply (any status)."""
+        outcome: asyncio.Future[Outcome] = asyncio.get_running_loop().create_future()
+
+        def done(result: Outcome) -> None:
+            if not outcome.done():
+                outcome.set_result(result)
+
+        exchange = self.start(method, url, body, timeout_s=timeout_s, headers=headers, on_done=done)
+        try:
+            result = await outcome
+        except BaseException:  # cancelled while the request was out
+            exchange.abort()
+            raise
+        if isinstance(result, HttpError):
+            raise result
+        return result
+
+    def start(
+        self,
+        method: str,
+        url: str,
+        body: bytes | str = b"",
+        *,
+        timeout_s: float,
+        on_done: Callable[[Outcome], None],
+        headers: Mapping[str, str] | None = None,
+    ) -> _Exchange:
+        """Send one request; ``on_done`` gets its reply (any status) or the :class:`HttpError` of
+        why none came, once. Called from the reply's own I/O callback when a kept-alive connection
+        was free: no task and no turn of the loop between the reply and its use, which is what
+        the core's gateway needs of a forwarded call. Raises ValueError for a header with a line
+        break and HttpUnreachable for a URL this client does not reach, before sending anything.
+        """
         if self._closed:
             raise HttpUnreachable("the HTTP client is closed")
         origin, request_line = self._request_line(method, url)
         payload = body.encode() if isinstance(body, str) else body
         extra = headers or {}
-        if any("\r" in text or "\n" in text for item in extra.items() for text in item):
+        lines = "".join([f"{name}: {value}\r\n" for name, value in extra.items()])
+        # One line break per header, each its own: any other is in a name or value.
+        if lines.count("\n") != len(extra) or lines.count("\r") != len(extra):
             raise ValueError("an HTTP header name or value holds a line break")
-        if method == "POST" and not any(name.lower() == "content-type" for name in extra):
-            extra = {**extra, "Content-Type": "application/json"}
-        head = (
-            request_line
-            + "".join(f"{name}: {value}\r\n" for name, value in extra.items())
-            + f"Content-Length: {len(payload)}\r\n\r\n"
-        )
-        request = head.encode("latin-1") + payload
-        try:
-            return await self._exchange(origin, request, time.monotonic() + timeout_s)
-        except (HttpTimeout, TimeoutError):
-            raise HttpTimeout(f"no reply from {url} within {timeout_s:g} s") from None
+        if method == "POST" and "\ncontent-type:" not in ("\n" + lines).lower():
+            lines += "Content-Type: application/json\r\n"
+        head = request_line + lines + f"Content-Length: {len(payload)}\r\n\r\n"
+        exchange = _Exchange(self, origin, head.encode("latin-1") + payload, url, timeout_s, on_done)
+        exchange.start()
+        return exchange
 
     def _request_line(self, method: str, url: str) -> tuple[tuple[str, int], str]:
         """Where ``url`` is, and the request's first lines up to its own headers (kept per URL:
@@ -233,43 +368,24 @@ class HttpClient:
             self._request_lines[(method, url)] = known
         return known
 
-    async def _exchange(self, origin: tuple[str, int], request: bytes, deadline: float) -> HttpReply:
-        while True:
-            connection, reused = await self._connection(origin, deadline)
-            try:
-                reply = await connection.send(request, deadline - time.monotonic())
-            except HttpUnreachable:
-                # A kept-alive connection the server dropped while idle: it never saw the
-                # request, so sending it again on a new connection cannot run it twice.
-                if reused and not connection.received_any:
-                    continue
-                raise
-            except BaseException:  # timeout or cancellation mid-reply: the connection is spoilt
-                connection.close()
-                raise
-            connection.release()
-            if connection.usable:
-                pool = self._idle.setdefault(origin, [])
-                if len(pool) < _MAX_IDLE_PER_ORIGIN:
-                    pool.append(connection)
-                else:
-                    connection.close()
-            return reply
-
-    async def _connection(self, origin: tuple[str, int], deadline: float) -> tuple[_Connection, bool]:
+    def _pooled(self, origin: tuple[str, int]) -> _Connection | None:
         pool = self._idle.get(origin)
         while pool:
             connection = pool.pop()
             if connection.usable:
-                return connection, True
+                return connection
             connection.close()
-        loop = asyncio.get_running_loop()
-        try:
-            async with asyncio.timeout(deadline - time.monotonic()):
-                _, connection = await loop.create_connection(lambda: _Connection(loop), *origin)
-        except OSError as error:
-            raise HttpUnreachable(f"cannot connect to {origin[0]}:{origin[1]}: {error.strerror or error}") from None
-        return connection, False
+        return None
+
+    def _keep(self, origin: tuple[str, int], connection: _Connection) -> None:
+        if self._closed or not connection.usable:
+            connection.close()
+            return
+        pool = self._idle.setdefault(origin, [])
+        if len(pool) < _MAX_IDLE_PER_ORIGIN:
+            pool.append(connection)
+        else:
+            connection.close()
 
     async def aclose(self) -> None:
         self._closed = True

@@ -42,6 +42,7 @@ async def echo(request: Request) -> Response:
 
 
 async def slow(request: Request) -> Response:
+    _peers.add(request.client and (request.client.host, request.client.port))  # type: ignore[arg-type]
     await asyncio.sleep(float(request.query_params["s"]))
     return JSONResponse({"slept": True})
 
@@ -229,3 +230,64 @@ async def test_a_fresh_connection_that_breaks_is_not_retried(client: HttpClient)
         with pytest.raises(HttpUnreachable, match="closed the connection"):
             await client.post(f"http://127.0.0.1:{listener.sockets[0].getsockname()[1]}/", b"{}", timeout_s=5)
     assert seen == 1
+
+
+async def test_a_short_timeout_after_a_long_one_on_the_same_connection_still_times_out(
+    server: str, client: HttpClient
+) -> None:
+    """A connection keeps one timer across its requests: a later, earlier deadline must move it."""
+    assert (await client.get(f"{server}/echo", timeout_s=30)).status == 200
+    with pytest.raises(HttpTimeout, match="within 0.2 s"):
+        await asyncio.wait_for(client.get(f"{server}/slow?s=3", timeout_s=0.2), 2)
+    assert len(_peers) == 1  # both on the same kept-alive connection
+
+
+async def test_a_long_timeout_after_a_short_one_is_not_cut_short(server: str, client: HttpClient) -> None:
+    """The timer armed for the first request's deadline fires during the second: it waits on."""
+    assert (await client.get(f"{server}/echo", timeout_s=0.2)).status == 200
+    assert (await client.get(f"{server}/slow?s=0.5", timeout_s=5)).json() == {"slept": True}
+    assert len(_peers) == 1
+
+
+async def test_a_cancelled_request_spoils_its_connection_not_the_next_request(server: str, client: HttpClient) -> None:
+    """The reply of a request given up on must not be read as the next one's."""
+    task = asyncio.create_task(client.get(f"{server}/slow?s=0.3", timeout_s=5))
+    await asyncio.sleep(0.1)
+    task.cancel()
+    with pytest.raises(asyncio.CancelledError):
+        await task
+    assert (await client.post(f"{server}/echo", b"next", timeout_s=5)).json()["body"] == "next"
+    assert len(_peers) == 2  # the second on a new connection
+
+
+async def test_start_hands_the_outcome_to_a_callback_once(server: str, client: HttpClient) -> None:
+    """The callback form the core's gateway uses: a reply of any status, or the error, once."""
+    outcomes: list[object] = []
+    done = asyncio.Event()
+
+    def on_done(outcome: object) -> None:
+        outcomes.append(outcome)
+        done.set()
+
+    for url, timeout_s in ((f"{server}/echo?status=404", 5.0), (f"{server}/slow?s=2", 0.2)):
+        done.clear()
+        client.start("GET", url, timeout_s=timeout_s, on_done=on_done)
+        await asyncio.wait_for(done.wait(), 5)
+    await asyncio.sleep(0.3)  # nothing more comes for either
+    assert [type(o).__name__ for o in outcomes] == ["HttpReply", "HttpTimeout"]
+    assert outcomes[0].status == 404  # type: ignore[attr-defined]
+
+
+async def test_a_fault_in_the_callback_is_logged_and_the_client_keeps_working(
+    server: str, client: HttpClient, caplog: pytest.LogCaptureFixture
+) -> None:
+    called = asyncio.Event()
+
+    def broken(outcome: object) -> None:
+        called.set()
+        raise RuntimeError("a bug in the caller")
+
+    client.start("GET", f"{server}/echo", timeout_s=5, on_done=broken)
+    await asyncio.wait_for(called.wait(), 5)
+    assert "handling a reply of the HTTP client failed" in caplog.text
+    assert (await client.get(f"{server}/echo", timeout_s=5)).status == 200
