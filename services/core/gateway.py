@@ -19,7 +19,7 @@ from starlette.websockets import WebSocket
 from services.core.core_node import CORE_NODE, CoreNode
 from services.core.gateway_topic import GatewayTopic, declared_type
 from services.core.registry import Registry
-from services.core.service_calls import ServiceCallFailed, ServiceCalls, ServiceReply, error_reply
+from services.core.service_calls import ServiceCallFailed, ServiceCalls, ServiceReply
 from services.core.settings import CoreSettings
 from services.runtime.auth import presented_token
 from services.runtime.edge.topic_socket import serve_topic_socket
@@ -69,7 +69,7 @@ class Gateway:
         try:
             return await self.calls.call(name, body, token=token, content_type=content_type)
         except ServiceCallFailed as failed:
-            return error_reply(failed.http_status, str(failed))
+            return failed.reply()
 
     def forward_then(
         self, name: str, body: bytes, *, token: str, content_type: str | None, then: Callable[[ServiceReply], None]

@@ -48,7 +48,6 @@ logger = logging.getLogger("skydeck.core")
 # Request headers that take a call off the fast path (a browser's page, a streamed or held body).
 _DECLINED_HEADERS = frozenset({b"origin", b"transfer-encoding", b"expect"})
 _REASONS = {status.value: status.phrase.encode("ascii") for status in HTTPStatus}
-_default_headers_cache: list[Any] = [None, b""]  # uvicorn's default headers, and them as bytes
 
 
 class _Call:
@@ -92,6 +91,8 @@ class GatewayHttpProtocol(asyncio.Protocol):
         self._closing = False
         self._idle_timer: asyncio.TimerHandle | None = None
         self._idle_since = 0.0
+        self._default_headers_of: object = None  # uvicorn's list of them, and it as bytes
+        self._default_headers_bytes = b""
         # Kept from connection_made: on Python 3.11 each asyncio.get_running_loop() is a getpid()
         # system call, and the forward path would make several per call.
         self._loop: asyncio.AbstractEventLoop | None = None
@@ -241,9 +242,10 @@ class GatewayHttpProtocol(asyncio.Protocol):
         """uvicorn's headers for every reply (date, and server unless turned off), as bytes: the
         list is replaced, not changed, when the date does (once a second), so it is kept by identity."""
         headers = self._server_state.default_headers
-        if headers is not _default_headers_cache[0]:
-            _default_headers_cache[:] = [headers, b"".join(b"%s: %s\r\n" % pair for pair in headers)]
-        return _default_headers_cache[1]
+        if headers is not self._default_headers_of:
+            self._default_headers_of = headers
+            self._default_headers_bytes = b"".join(b"%s: %s\r\n" % pair for pair in headers)
+        return self._default_headers_bytes
 
     # -- everything else: uvicorn's protocol ---------------------------------------------------
 

@@ -77,6 +77,10 @@ class ServiceCallFailed(ServiceError):
     def http_status(self) -> int:  # type: ignore[override]
         return self.status
 
+    def reply(self) -> ServiceReply:
+        """This failure as an HTTP caller gets it."""
+        return error_reply(self.status, str(self))
+
 
 @dataclass(slots=True)
 class _Target:
@@ -135,7 +139,7 @@ class ServiceCalls:
             reply = await self._http.post(target.url, body, headers=target.headers, timeout_s=timeout_s)
         except (ValueError, HttpError) as error:
             raise target.failed(error, timeout_s) from None
-        return ServiceReply(reply.status, reply.body, reply.headers.get("content-type"))
+        return _served(reply)
 
     def call_then(
         self, name: str, body: bytes, *, token: str, content_type: str | None, then: Callable[[ServiceReply], None]
@@ -148,7 +152,7 @@ class ServiceCalls:
         try:
             target = self._target(name, token=token, content_type=content_type)
         except ServiceCallFailed as failed:
-            then(error_reply(failed.http_status, str(failed)))
+            then(failed.reply())
             return
         if target is None:
             task = asyncio.get_running_loop().create_task(self._hosted_then(name, body, timeout_s, then))
@@ -157,17 +161,12 @@ class ServiceCalls:
             return
 
         def replied(outcome: Outcome) -> None:
-            if isinstance(outcome, HttpReply):
-                then(ServiceReply(outcome.status, outcome.body, outcome.headers.get("content-type")))
-            else:
-                failed = target.failed(outcome, timeout_s)
-                then(error_reply(failed.http_status, str(failed)))
+            then(_served(outcome) if isinstance(outcome, HttpReply) else target.failed(outcome, timeout_s).reply())
 
         try:
             self._http.start("POST", target.url, body, headers=target.headers, timeout_s=timeout_s, on_done=replied)
         except (ValueError, HttpError) as error:
-            refused = target.failed(error, timeout_s)
-            then(error_reply(refused.http_status, str(refused)))
+            then(target.failed(error, timeout_s).reply())
 
     def _target(self, name: str, *, token: str, content_type: str | None) -> _Target | None:
         """Where a call of ``name`` goes (None: a service hosted here), or ServiceCallFailed."""
@@ -218,6 +217,11 @@ class ServiceCalls:
         except SkydeckError as error:
             return error_reply(error.http_status, str(error))
         return ServiceReply(200, response.model_dump_json().encode())
+
+
+def _served(reply: HttpReply) -> ServiceReply:
+    """A node's reply, as it came."""
+    return ServiceReply(reply.status, reply.body, reply.headers.get("content-type"))
 
 
 def error_reply(status: int, detail: str) -> ServiceReply:
