@@ -10,8 +10,9 @@ So the core's server speaks HTTP itself first (uvicorn's ``http=`` option takes 
 - A connection starts here. A request that is a plain service call (POST, HTTP/1.1 keep-alive,
   a registered service's name with no ``%``-escapes and no query, a ``Content-Length`` within the
   size limit, no ``Origin``, ``Expect`` or ``Transfer-Encoding``) is parsed by httptools and
-  forwarded through :meth:`Gateway.forward`, the same call the ASGI route makes, so its checks,
-  statuses and error details are the same.
+  forwarded through :meth:`Gateway.forward_then`, the callback form of the call the ASGI route
+  makes, so its checks, statuses and error details are the same; the reply is written from the
+  node reply's own I/O callback (no task, no turn of the loop: docs/performance.md).
 - Any other request (a browser's, a WebSocket upgrade, a GET, a call with ``?token=``, anything
   unusual or malformed) hands the connection, with every byte of that request, to uvicorn's own
   httptools protocol, which serves it and the rest of the connection as it serves any app. The

@@ -1,8 +1,9 @@
 """The one way a call reaches a service through the core, whoever asks.
 
 ``POST /NAME`` over HTTP and the protocol adapters' calls (rosbridge's ``call_service``,
-Foxglove's service requests) all go through :meth:`ServiceCalls.call`, so the same checks and
-the same failures apply to every caller, each edge mapping them to its own reply:
+Foxglove's service requests) all go through :meth:`ServiceCalls.call` (or
+:meth:`ServiceCalls.call_then`, its callback form, which the core's HTTP connections use), so the
+same checks and the same failures apply to every caller, each edge mapping them to its own reply:
 
     404  no service has that name (405: it is a topic)
     401  the write token is missing or wrong

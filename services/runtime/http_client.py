@@ -90,7 +90,6 @@ class _Connection(asyncio.Protocol):
         # One timer per connection, not one per request: it looks at the request waiting when it
         # fires and times it out, or waits on for its deadline.
         self._timer: asyncio.TimerHandle | None = None
-        self._timer_at = 0.0
         self._deadline = 0.0
         self.transport: asyncio.Transport | None = None
         self.idle_since = 0.0
@@ -161,7 +160,7 @@ class _Connection(asyncio.Protocol):
         self.received_any = False
         self._on_done = on_done
         self._deadline = self._loop.time() + max(timeout_s, 0.0)
-        if self._timer is None or self._timer_at > self._deadline:
+        if self._timer is None or self._timer.when() > self._deadline:
             self._arm_timer()
         self.transport.write(request)
 
@@ -173,7 +172,6 @@ class _Connection(asyncio.Protocol):
 
     def _arm_timer(self) -> None:
         self._stop_timer()
-        self._timer_at = self._deadline
         self._timer = self._loop.call_at(self._deadline, self._time_out)
 
     def _time_out(self) -> None:
@@ -250,7 +248,7 @@ class _Exchange:
             async with asyncio.timeout(self._deadline - time.monotonic()):
                 _, connection = await loop.create_connection(lambda: _Connection(loop), *self._origin)
         except TimeoutError:
-            self._deliver(HttpTimeout(f"no reply from {self._url} within {self._timeout_s:g} s"))
+            self._deliver(self._timed_out())
             return
         except OSError as error:
             where = f"{self._origin[0]}:{self._origin[1]}"
@@ -271,11 +269,14 @@ class _Exchange:
         if isinstance(outcome, HttpReply):
             self._client._keep(self._origin, connection)
         elif isinstance(outcome, HttpTimeout):
-            outcome = HttpTimeout(f"no reply from {self._url} within {self._timeout_s:g} s")
+            outcome = self._timed_out()  # the connection's says nothing of which request
         elif self._reused and not connection.received_any:
             self.start()  # a kept-alive connection dropped while idle: again, on another
             return
         self._deliver(outcome)
+
+    def _timed_out(self) -> HttpTimeout:
+        return HttpTimeout(f"no reply from {self._url} within {self._timeout_s:g} s")
 
     def _deliver(self, outcome: Outcome) -> None:
         try:

@@ -4,6 +4,8 @@ below ASGI, everything else handed to uvicorn with every byte, on real sockets."
 from __future__ import annotations
 
 import asyncio
+import datetime
+import email.utils
 import json
 
 import httptools
@@ -90,6 +92,19 @@ async def test_calls_are_answered_in_order_on_one_connection_and_pipelined(core,
     replies = await read_replies(reader, 3)
     assert [json.loads(reply.body)["message"] for reply in replies] == ["2", "3", "4"]
     assert counter.calls == 4
+    writer.close()
+
+
+async def test_a_call_answered_here_carries_uvicorns_date_and_server_headers(core, start_node) -> None:
+    """As uvicorn's own replies do (the protocol keeps them as bytes until uvicorn replaces them)."""
+    await start_node(Counter)
+    reader, writer = await asyncio.open_connection("127.0.0.1", core.port)
+    writer.write(post("/counter/count"))
+    [reply] = await read_replies(reader, 1)
+    assert protocols(core) == [GatewayHttpProtocol]
+    assert reply.headers["server"] == "uvicorn"
+    sent = email.utils.parsedate_to_datetime(reply.headers["date"])
+    assert abs((datetime.datetime.now(datetime.UTC) - sent).total_seconds()) < 5  # uvicorn's, once a second
     writer.close()
 
 
