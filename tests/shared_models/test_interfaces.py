@@ -77,7 +77,7 @@ def test_interface_names() -> None:
     assert interface_names("action")[:1] == ["actionlib/action/Test"]
     assert sorted(interface_names("msg") + interface_names("srv") + interface_names("action")) == names
     with pytest.raises(ValueError, match="kind"):
-        interface_names("action")
+        interface_names("actions")
 
 
 POINT_STAMPED = """\
