@@ -6,6 +6,7 @@ loader as a student's own). A workspace is found the way ``colcon`` and ``catkin
 
     ros2_ws/                 a workspace folder: its src/PKG and src/GROUP/PKG
     ros2_ws/src/             a folder of packages: PKG and GROUP/PKG
+    my_packages/             any other folder without src/: its PKG
     ros2_ws/src/my_pkg/      a package itself
 
 Build output (``build``, ``install``, ``log``, ``devel``) and hidden folders are never entered,
@@ -68,10 +69,13 @@ def packages_in(root: Path) -> dict[str, Path]:
     root = root.resolve()
     if (root / "package.xml").is_file():
         return {package_name(root): root}
+    if (root / "src").is_dir():
+        folder, depth = root / "src", _DEPTH
+    else:  # a folder of packages: src/ itself looks two deep, any other folder one (never a home's tree)
+        folder, depth = root, _DEPTH if root.name == "src" else 1
     found: dict[str, Path] = {}
-    for folder in (root / "src", root):
-        for package in _package_folders(folder, _DEPTH):
-            found.setdefault(package_name(package), package)
+    for package in _package_folders(folder, depth):
+        found.setdefault(package_name(package), package)
     return found
 
 
