@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 from shared_models.lazy import lazy_exports
 
 if TYPE_CHECKING:
-    from shared_models._message import Message, ServiceType, all_interfaces
+    from shared_models._message import ActionType, Message, ServiceType, all_interfaces
     from shared_models.interfaces import (
         UnknownInterfaceError,
         get_interface,
@@ -36,6 +36,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "RESERVED_PREFIXES",
+    "ActionType",
     "InvalidNameError",
     "Message",
     "ServiceType",
@@ -49,6 +50,7 @@ __all__ = [
 ]
 
 _HOMES = {
+    "ActionType": "shared_models._message",
     "RESERVED_PREFIXES": "shared_models.names",
     "InvalidNameError": "shared_models.names",
     "Message": "shared_models._message",

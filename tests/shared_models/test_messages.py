@@ -512,6 +512,7 @@ class TestValidation:
 def test_public_api_is_pinned() -> None:
     assert sorted(shared_models.__all__) == sorted(
         [
+            "ActionType",
             "Message",
             "ServiceType",
             "all_interfaces",
