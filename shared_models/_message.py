@@ -18,6 +18,7 @@ from __future__ import annotations
 import base64
 import binascii
 import re
+from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Annotated, Any, ClassVar
 
@@ -56,6 +57,7 @@ __all__ = [
     "UInt64",
     "all_interfaces",
     "fixed_floats",
+    "forget_interfaces",
     "registered",
 ]
 
@@ -168,6 +170,13 @@ def _register(ros_type: str, cls: type[Message] | type[ServiceType] | type[Actio
     if existing is not None and existing is not cls:
         raise TypeError(f"interface {ros_type} is defined twice ({existing!r} and {cls!r})")
     _INTERFACES[ros_type] = cls
+
+
+def forget_interfaces(names: Iterable[str]) -> None:
+    """Unregister ``names`` (the definition loader undoes a build that failed half-way, so the
+    fixed file can be built again)."""
+    for name in names:
+        _INTERFACES.pop(name, None)
 
 
 def all_interfaces() -> dict[str, type[Message] | type[ServiceType] | type[ActionType]]:

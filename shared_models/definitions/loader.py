@@ -21,7 +21,7 @@ from functools import cache
 from pathlib import Path
 from typing import Any, get_args, get_origin
 
-from shared_models._message import ActionType, Message, ServiceType, registered
+from shared_models._message import ActionType, Message, ServiceType, forget_interfaces, registered
 from shared_models.definitions.builder import build_definition
 from shared_models.definitions.errors import DefinitionConflict, DefinitionError
 from shared_models.definitions.index import index
@@ -191,10 +191,15 @@ class _Build:
         try:
             for field in definition.dependencies():
                 self.resolve(field.type.base, field, definition)
+            before = set(registered())
             try:
                 build_definition(definition, lambda name, field: self.resolve(name, field, definition))
-            except TypeError as error:  # registering a name twice (an action's ROS 1 names and a .msg)
-                raise DefinitionError(definition.origin, None, str(error)) from None
+            except BaseException as error:
+                # None of a half-built definition stays: the fixed file builds again
+                forget_interfaces(set(registered()) - before - _built_elsewhere(before))
+                if isinstance(error, TypeError):  # a name registered twice (an action's ROS 1 names and a .msg)
+                    raise DefinitionError(definition.origin, None, str(error)) from None
+                raise
             _DEFINITIONS[unit] = definition
         finally:
             self.building.pop()
@@ -226,6 +231,17 @@ class _Build:
                 if name.endswith(suffix) and action in self.sources:
                     return action
         return None
+
+
+def _built_elsewhere(before: set[str]) -> set[str]:
+    """Types registered since ``before`` that belong to definitions built meanwhile (a dependency
+    loaded on the way), which stay."""
+    kept = set()
+    for name, cls in registered().items():
+        unit = cls.__dict__.get("__ros_definition__")
+        if name not in before and (unit is None or unit in _DEFINITIONS):
+            kept.add(name)
+    return kept
 
 
 def load_any_package(package: str) -> None:
