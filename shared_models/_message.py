@@ -3,7 +3,7 @@
 A message is a pydantic v2 model whose field names, defaults and JSON match the ROS message of
 the same name, so ROS code reads the same: ``Point(x=1.0, y=2.0, z=0.0)``. Each concrete type
 declares its ROS name in ``__ros_type__`` (``"geometry_msgs/msg/Point"``), which registers it
-for lookup by name (:func:`shared_models.get_interface`).
+for lookup by name (:func:`shared_models.get_interface`, which loads the package it names).
 
 Field types carry their ROS primitive through ``Annotated`` aliases (``Float64``, ``UInt32``...),
 which is what ``skydeck interface show`` prints.
@@ -55,7 +55,6 @@ __all__ = [
     "UInt16",
     "UInt32",
     "UInt64",
-    "all_interfaces",
     "fixed_floats",
     "forget_interfaces",
     "registered",
@@ -177,14 +176,6 @@ def forget_interfaces(names: Iterable[str]) -> None:
     fixed file can be built again)."""
     for name in names:
         _INTERFACES.pop(name, None)
-
-
-def all_interfaces() -> dict[str, type[Message] | type[ServiceType] | type[ActionType]]:
-    """Every message, service and action type by its full ROS name (the whole catalogue is loaded)."""
-    from shared_models.catalogue import load_catalogue
-
-    load_catalogue()
-    return dict(_INTERFACES)
 
 
 def registered(prefix: str = "") -> dict[str, type[Message] | type[ServiceType] | type[ActionType]]:

@@ -38,14 +38,10 @@ _loaded = False
 
 
 def load_catalogue() -> None:
-    """Import every message package and load every shipped definition package (once)."""
+    """Import every message package declared in Python (once); :func:`shared_models.all_interfaces`
+    also loads the shipped definition packages."""
     global _loaded
     if not _loaded:
         for package in MESSAGE_PACKAGES:
             importlib.import_module(f"shared_models.{package}")
-        from shared_models.definitions.index import index
-        from shared_models.definitions.loader import load_package
-
-        for shipped in index.interface_packages(shipped=True):
-            load_package(shipped.name)
         _loaded = True

@@ -18,13 +18,22 @@ from shared_models._message import (
     Message,
     RosPrimitive,
     ServiceType,
-    all_interfaces,
     registered,
 )
+from shared_models.catalogue import load_catalogue
 from shared_models.close_codes import Close
+from shared_models.definitions.index import index
+from shared_models.definitions.loader import load_any_package, load_package
 from shared_models.errors import SkydeckError
 
-__all__ = ["UnknownInterfaceError", "field_types", "get_interface", "interface_names", "interface_text"]
+__all__ = [
+    "UnknownInterfaceError",
+    "all_interfaces",
+    "field_types",
+    "get_interface",
+    "interface_names",
+    "interface_text",
+]
 
 Interface = type[Message] | type[ServiceType] | type[ActionType]
 _KINDS = ("msg", "srv", "action")
@@ -43,6 +52,16 @@ class UnknownInterfaceError(SkydeckError, LookupError):
         )
         self.name = name
         self.suggestions = suggestions
+
+
+def all_interfaces() -> dict[str, Interface]:
+    """Every message, service and action type by its full ROS name: the whole catalogue is
+    loaded (Skydeck's Python modules and its shipped definition packages; a workspace's packages
+    only once used)."""
+    load_catalogue()
+    for package in index.interface_packages(shipped=True):
+        load_package(package.name)
+    return registered()
 
 
 def _is_part(ros_type: str) -> bool:
@@ -69,8 +88,6 @@ def get_interface(name: str) -> Interface:
     if len(parts) == 2:
         candidates = [f"{parts[0]}/{kind}/{parts[1]}" for kind in _KINDS]
     if len(parts) in (2, 3):  # only the package named: a process need not load every type
-        from shared_models.definitions.loader import load_any_package
-
         load_any_package(parts[0])
         found = _first(candidates, registered(parts[0] + "/"))
         if found is not None:

@@ -42,7 +42,7 @@ from shared_models._message import (
 from shared_models.definitions.errors import DefinitionError
 from shared_models.definitions.parser import Definition, FieldSpec, FieldType, MessageSpec
 
-__all__ = ["Resolver", "build_definition", "message_class", "service_class"]
+__all__ = ["Resolver", "message_class", "service_class"]
 
 Resolver = Callable[[str, FieldSpec], type]
 """Finds the class registered as a field's type name (``geometry_msgs/msg/Point``), or raises
@@ -70,19 +70,6 @@ _BYTES = ("uint8", "byte")  # their arrays are Python bytes, base64 in JSON, as 
 # A generated type's fields and constants are attributes of its class: none may hide a method
 # every message has (copy, json, model_dump...).
 _TAKEN = frozenset(name for name in dir(Message) if not name.startswith("__"))
-
-
-def build_definition(definition: Definition, resolve: Resolver) -> list[type]:
-    """Every class ``definition`` declares (a message; a service and its two parts; an action
-    and everything derived from it), registered under their ROS names."""
-    if definition.kind == "msg":
-        return [message_class(definition.ros_type, definition.parts[0], resolve, definition=definition)]
-    if definition.kind == "srv":
-        request, response = definition.parts
-        return list(service_class(definition.ros_type, request, response, resolve, definition=definition))
-    from shared_models.definitions.actions import action_classes
-
-    return action_classes(definition, resolve)
 
 
 def message_class(

@@ -22,7 +22,9 @@ from pathlib import Path
 from typing import Any, get_args, get_origin
 
 from shared_models._message import ActionType, Message, ServiceType, forget_interfaces, registered
-from shared_models.definitions.builder import build_definition
+from shared_models.catalogue import MESSAGE_PACKAGES
+from shared_models.definitions.actions import action_classes
+from shared_models.definitions.builder import Resolver, message_class, service_class
 from shared_models.definitions.errors import DefinitionConflict, DefinitionError
 from shared_models.definitions.index import index
 from shared_models.definitions.parser import Definition, FieldSpec, parse_definition
@@ -233,6 +235,17 @@ class _Build:
         return None
 
 
+def build_definition(definition: Definition, resolve: Resolver) -> list[type]:
+    """Every class ``definition`` declares (a message; a service and its two parts; an action
+    and everything derived from it), registered under their ROS names."""
+    if definition.kind == "msg":
+        return [message_class(definition.ros_type, definition.parts[0], resolve, definition=definition)]
+    if definition.kind == "srv":
+        request, response = definition.parts
+        return list(service_class(definition.ros_type, request, response, resolve, definition=definition))
+    return action_classes(definition, resolve)
+
+
 def _built_elsewhere(before: set[str]) -> set[str]:
     """Types registered since ``before`` that belong to definitions built meanwhile (a dependency
     loaded on the way), which stay."""
@@ -247,8 +260,6 @@ def _built_elsewhere(before: set[str]) -> set[str]:
 def load_any_package(package: str) -> None:
     """Make the types of ``package`` known: import its Python module (``geometry_msgs``) or load
     its definition files; nothing if Skydeck knows no such package."""
-    from shared_models.catalogue import MESSAGE_PACKAGES
-
     if package in MESSAGE_PACKAGES:
         importlib.import_module(f"shared_models.{package}")
     else:

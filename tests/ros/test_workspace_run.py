@@ -82,6 +82,8 @@ def test_interface_show_and_list_read_the_workspace_itself(core: System, workspa
     assert shown.stdout == "int64 a\nint64 b\nint64 c\n---\nint64 sum\n", shown.stderr
     listed = skydeck(core, "interface", "list", "-s", cwd=workspace).stdout.split()
     assert "tutorial_interfaces/srv/AddThreeInts" in listed and "example_interfaces/srv/AddTwoInts" in listed
+    actions = skydeck(core, "interface", "list", "-a", cwd=workspace).stdout.split()
+    assert "example_interfaces/action/Fibonacci" in actions and all("/action/" in name for name in actions)
 
 
 def test_the_core_learned_the_type_from_the_node(core: System, talker: BackgroundProcess) -> None:
@@ -101,6 +103,17 @@ def test_a_bag_records_the_workspace_message(core: System, talker: BackgroundPro
         assert topic is not None and topic.type_name == "tutorial_interfaces/msg/Num" and topic.count >= 5
     info = skydeck(core, "bag", "info", str(bag)).stdout
     assert "Topic: /topic | Type: tutorial_interfaces/msg/Num" in info
+    echo = BackgroundProcess(
+        [sys.executable, "-m", "services.cli", "topic", "echo", "/replayed", "--once", "--timeout", "30"],
+        name="echo /replayed",
+        env={**os.environ, "SKYDECK_CORE_URL": core.url, "PYTHONUNBUFFERED": "1"},
+    )
+    try:
+        played = skydeck(core, "bag", "play", str(bag), "--remap", "/topic:=/replayed", "--wait-for-subscribers", cwd=tmp_path)
+        assert played.returncode == 0, played.stderr
+        echo.wait_for_line("num: ", 30)
+    finally:
+        echo.stop()
 
 
 def test_listener_as_a_file_in_its_package_and_a_custom_service(core: System, workspace: Path, talker: BackgroundProcess) -> None:
