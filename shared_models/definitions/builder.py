@@ -150,32 +150,31 @@ def _check_free(name: str, line: int, definition: Definition) -> None:
 def _field(field: FieldSpec, resolve: Resolver, definition: Definition) -> tuple[Any, Any]:
     """The annotation and the default (a value or a pydantic Field) of one field."""
     kind = field.type
-    declared = (Declared(),) if field.default is not None else ()
+    declared: tuple[Any, ...] = (Declared(),) if field.default is not None else ()
+    least, most = _length(kind)
+    annotation: Any
     if not kind.primitive:
-        nested = resolve(kind.base, field)
+        nested: Any = resolve(kind.base, field)
         if not issubclass(nested, Message):
             raise DefinitionError(definition.origin, field.line, f"{kind.base} is not a message type")
         if not kind.array:
             return nested, Field(default_factory=nested)
-        if kind.fixed:
-            size = kind.size or 0
-            return list[nested], Field(  # type: ignore[valid-type]
-                default_factory=lambda: [nested() for _ in range(size)], min_length=size, max_length=size
-            )
-        return list[nested], Field(default_factory=list, **_length(kind))  # type: ignore[valid-type]
+        size = kind.size or 0
+        make = (lambda: [nested() for _ in range(size)]) if kind.fixed else list
+        return list[nested], Field(default_factory=make, min_length=least, max_length=most)
     if kind.array and kind.base in _BYTES:
         annotation = Annotated[Base64Bytes, RosPrimitive(kind.base + kind.brackets()), *declared]
         if kind.fixed:
             default = bytes(field.default) if field.default is not None else bytes(kind.size or 0)
         else:
             default = bytes(field.default or ())
-        return annotation, Field(default=default, **_length(kind))
-    item = _scalar(kind)
+        return annotation, Field(default=default, min_length=least, max_length=most)
+    item: Any = _scalar(kind)
     if kind.array:
         zero = _zero(kind.base)
         values = list(field.default) if field.default is not None else [zero] * (kind.size or 0) if kind.fixed else []
-        annotation = Annotated[list[item], *declared] if declared else list[item]  # type: ignore[valid-type]
-        return annotation, Field(default_factory=lambda: list(values), **_length(kind))
+        annotation = Annotated[list[item], *declared] if declared else list[item]
+        return annotation, Field(default_factory=lambda: list(values), min_length=least, max_length=most)
     annotation = Annotated[item, *declared] if declared else item
     return annotation, field.default if field.default is not None else _zero(kind.base)
 
@@ -191,9 +190,10 @@ def _zero(base: str) -> Any:
     return _ZEROS.get(base, 0)
 
 
-def _length(kind: FieldType) -> dict[str, int]:
+def _length(kind: FieldType) -> tuple[int | None, int | None]:
+    """The least and most items of an array field (None: no limit)."""
     if kind.size is None:
-        return {}
+        return None, None
     if kind.bounded:
-        return {"max_length": kind.size}
-    return {"min_length": kind.size, "max_length": kind.size}
+        return None, kind.size
+    return kind.size, kind.size

@@ -232,17 +232,17 @@ class _Reader:
                 continue
             constant = _CONSTANT.match(line)
             if constant is not None:
-                item: ConstantSpec | FieldSpec = self.constant(number, *constant.groups())
-                constants.append(item)
+                constants.append(self.constant(number, *constant.groups()))
+                name = constants[-1].name
             else:
                 found = _FIELD.match(_without_comment(line))
                 if found is None:
                     raise self.fail(number, f"expected `TYPE NAME`, `TYPE NAME DEFAULT` or `TYPE NAME=VALUE`, got {line!r}")
-                item = self.field(number, *found.groups())
-                fields.append(item)
-            if item.name in names:
-                raise self.fail(number, f"{item.name!r} is declared twice")
-            names.add(item.name)
+                fields.append(self.field(number, *found.groups()))
+                name = fields[-1].name
+            if name in names:
+                raise self.fail(number, f"{name!r} is declared twice")
+            names.add(name)
         while comment and not comment[-1]:
             comment.pop()
         return MessageSpec("\n".join(comment), tuple(constants), tuple(fields))
