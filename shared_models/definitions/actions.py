@@ -109,32 +109,14 @@ def _actionlib_classes(definition: Definition, build: _Make) -> list[type]:
     """ROS 1's messages of the action (actionlib's), in the package's ``msg`` namespace."""
     prefix = f"{definition.package}/msg/{definition.name}"
     short = definition.name
-    goal_spec, result_spec, feedback_spec = definition.parts
-    goal = build(f"{prefix}Goal", goal_spec, f"{short}Goal")
-    result = build(f"{prefix}Result", result_spec, f"{short}Result")
-    feedback = build(f"{prefix}Feedback", feedback_spec, f"{short}Feedback")
-    action_goal = build(
-        f"{prefix}ActionGoal",
-        _message(("header", _HEADER), ("goal_id", _GOAL_ID), ("goal", f"{prefix}Goal")),
-        f"{short}ActionGoal",
-    )
-    action_result = build(
-        f"{prefix}ActionResult",
-        _message(("header", _HEADER), ("status", _GOAL_STATUS), ("result", f"{prefix}Result")),
-        f"{short}ActionResult",
-    )
-    action_feedback = build(
-        f"{prefix}ActionFeedback",
-        _message(("header", _HEADER), ("status", _GOAL_STATUS), ("feedback", f"{prefix}Feedback")),
-        f"{short}ActionFeedback",
-    )
-    action = build(
-        f"{prefix}Action",
-        _message(
-            ("action_goal", f"{prefix}ActionGoal"),
-            ("action_result", f"{prefix}ActionResult"),
-            ("action_feedback", f"{prefix}ActionFeedback"),
-        ),
-        f"{short}Action",
-    )
-    return [goal, result, feedback, action_goal, action_result, action_feedback, action]
+    made = []
+    for part, spec in zip(("Goal", "Result", "Feedback"), definition.parts, strict=True):
+        made.append(build(f"{prefix}{part}", spec, f"{short}{part}"))
+    # Each part in its envelope: a goal with its ID, a result or feedback with its goal's status.
+    for part, tag in (("Goal", ("goal_id", _GOAL_ID)), ("Result", ("status", _GOAL_STATUS)),
+                      ("Feedback", ("status", _GOAL_STATUS))):  # fmt: skip
+        envelope = _message(("header", _HEADER), tag, (part.lower(), f"{prefix}{part}"))
+        made.append(build(f"{prefix}Action{part}", envelope, f"{short}Action{part}"))
+    parts = [(f"action_{part.lower()}", f"{prefix}Action{part}") for part in ("Goal", "Result", "Feedback")]
+    made.append(build(f"{prefix}Action", _message(*parts), f"{short}Action"))
+    return made
