@@ -3,6 +3,7 @@ processes that ``skydeck run`` starts.
 
     rclpy, rclpy.node, ...     -> services.ros.rclpy, services.ros.rclpy.node, ... (the same modules)
     rospy                      -> services.ros.rospy
+    tf2_ros, tf, ...           -> services.ros.tf2_ros, services.ros.tf, ... (FACADES)
     geometry_msgs.msg          -> a view of shared_models.geometry_msgs: its geometry_msgs/msg/* types
     std_srvs.srv               -> its std_srvs/srv/* types, with ROS 1's TriggerRequest/TriggerResponse
                                   and ROS 2's Trigger_Request/Trigger_Response spellings
@@ -37,8 +38,15 @@ from shared_models.catalogue import MESSAGE_PACKAGES
 
 __all__ = ["FACADES", "RosImportFinder", "message_view"]
 
-# A ROS client library's name -> the façade package that imitates it.
-FACADES = {"rclpy": "services.ros.rclpy", "rospy": "services.ros.rospy"}
+# A ROS Python package's name -> the façade that imitates it.
+FACADES = {
+    "rclpy": "services.ros.rclpy",
+    "rospy": "services.ros.rospy",
+    "tf": "services.ros.tf",  # ROS 1's (tf.transformations, TransformListener, TransformBroadcaster)
+    "tf2_geometry_msgs": "services.ros.tf2_geometry_msgs",
+    "tf2_ros": "services.ros.tf2_ros",
+    "tf_transformations": "services.ros.tf_transformations",
+}
 _KINDS = ("msg", "srv")
 # ROS Python packages a course meets that are not message packages and that Skydeck lacks.
 _NOT_PROVIDED = frozenset(
@@ -60,10 +68,6 @@ _NOT_PROVIDED = frozenset(
         "rospkg",
         "rosidl_runtime_py",
         "sensor_msgs_py",
-        "tf",
-        "tf2_geometry_msgs",
-        "tf2_ros",
-        "tf_transformations",
     }
 )
 _PACKAGE_SUFFIXES = ("_msgs", "_srvs", "_interfaces", "_msg", "_srv", "_action")

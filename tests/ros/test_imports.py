@@ -110,7 +110,7 @@ def test_unknown_type_in_a_known_package() -> None:
     ("module", "message"),
     [
         ("rclpy.action", "`rclpy.action` is a ROS API Skydeck does not provide (yet)"),
-        ("tf2_ros", "`tf2_ros` is a ROS API Skydeck does not provide"),
+        ("message_filters", "`message_filters` is a ROS API Skydeck does not provide"),
         ("geometry_msgs.action", "`geometry_msgs.action` (ROS actions)"),
     ],
 )
