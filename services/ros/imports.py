@@ -33,6 +33,7 @@ from services.ros.errors import (
     UnknownMessagePackageError,
     not_provided,
 )
+from services.ros.extras import EXTRAS, check_extra
 from shared_models._message import Message, ServiceType
 from shared_models.catalogue import MESSAGE_PACKAGES
 
@@ -42,6 +43,7 @@ __all__ = ["FACADES", "RosImportFinder", "message_view"]
 FACADES = {
     "rclpy": "services.ros.rclpy",
     "rospy": "services.ros.rospy",
+    "cv_bridge": "services.ros.cv_bridge",
     "tf": "services.ros.tf",  # ROS 1's (tf.transformations, TransformListener, TransformBroadcaster)
     "tf2_geometry_msgs": "services.ros.tf2_geometry_msgs",
     "tf2_ros": "services.ros.tf2_ros",
@@ -53,7 +55,6 @@ _NOT_PROVIDED = frozenset(
     {
         "actionlib",
         "ament_index_python",
-        "cv_bridge",
         "image_geometry",
         "image_transport",
         "laser_geometry",
@@ -165,6 +166,8 @@ class RosImportFinder(importlib.abc.MetaPathFinder):
         self, fullname: str, path: Sequence[str] | None = None, target: types.ModuleType | None = None
     ) -> importlib.machinery.ModuleSpec | None:
         top, _, rest = fullname.partition(".")
+        if top in EXTRAS and not rest:
+            check_extra(top)  # one line if the extra (OpenCV...) is not installed; else on as usual
         if top in FACADES:
             return self._facade_spec(fullname, FACADES[top] + (f".{rest}" if rest else ""))
         if top in MESSAGE_PACKAGES:
