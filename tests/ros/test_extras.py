@@ -6,24 +6,15 @@ from __future__ import annotations
 import importlib
 import subprocess
 import sys
-from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 
-from services.ros import disable_ros_imports, enable_ros_imports
 from services.ros.extras import EXTRAS, MissingExtraError
 
-pytestmark = pytest.mark.timeout(60)
+pytestmark = [pytest.mark.timeout(60), pytest.mark.usefixtures("ros_imports")]
 
 REPO = Path(__file__).resolve().parents[2]
-
-
-@pytest.fixture(autouse=True)
-def ros_imports() -> Iterator[None]:
-    enable_ros_imports()
-    yield
-    disable_ros_imports()
 
 
 def test_cv_bridge_without_opencv_says_how_to_install_it(monkeypatch: pytest.MonkeyPatch) -> None:

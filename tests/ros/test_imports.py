@@ -6,7 +6,6 @@ from __future__ import annotations
 import importlib
 import subprocess
 import sys
-from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -19,14 +18,9 @@ from services.ros.errors import (
 )
 from shared_models import geometry_msgs, rcl_interfaces, ros_workshop, sensor_msgs, std_srvs
 
+pytestmark = pytest.mark.usefixtures("ros_imports")
+
 REPO = Path(__file__).resolve().parents[2]
-
-
-@pytest.fixture(autouse=True)
-def ros_imports() -> Iterator[None]:
-    enable_ros_imports()
-    yield
-    disable_ros_imports()
 
 
 def test_message_views_are_the_shared_models_classes() -> None:

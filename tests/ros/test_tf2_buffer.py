@@ -268,3 +268,26 @@ def test_do_transform_functions_against_known_values() -> None:
     )
     c = moved.pose.covariance
     assert _close((c[0], c[7], c[35], c[1]), (1.0, 4.0, 0.5, 0.0))  # x and y swap under a quarter turn
+
+
+def test_ros1_tf_transformer_answers_in_tuples_and_takes_leading_slashes() -> None:
+    from services.ros.tf import Exception as TfException
+    from services.ros.tf import TransformerROS
+
+    tf_ = TransformerROS(True, RospyDuration(10.0))
+    tf_.setTransformStatic(_link("map", "odom", 0.0, x=1.0))
+    tf_.setTransform(_link("odom", "base_link", 5.0, x=2.0, yaw=math.pi / 2))
+    trans, rot = tf_.lookupTransform("/map", "/base_link", RospyTime(0))
+    assert trans == pytest.approx([3.0, 0.0, 0.0]) and rot == pytest.approx([0.0, 0.0, math.sqrt(0.5), math.sqrt(0.5)])
+    assert tf_.canTransform("/map", "base_link", RospyTime(0)) and tf_.frameExists("odom")
+    assert tf_.getLatestCommonTime("/map", "/base_link") == RospyTime(5)
+    ahead = PointStamped(header=Header(stamp=RospyTime(5), frame_id="/base_link"), point=Point(x=1.0))
+    moved = tf_.transformPoint("/map", ahead)
+    assert (moved.header.frame_id, moved.header.stamp) == ("/map", RospyTime(5))  # tf keeps the asked name and stamp
+    assert (moved.point.x, moved.point.y) == pytest.approx((3.0, 1.0))
+    assert tf_.asMatrix("map", ahead.header) @ [1.0, 0.0, 0.0, 1.0] == pytest.approx([3.0, 1.0, 0.0, 1.0])
+    with pytest.raises(TfException, match="without a dedicated thread"):  # tf.Transformer has no listener
+        tf_.waitForTransform("map", "base_link", RospyTime(0), RospyDuration(0.1))
+    tf_.setUsingDedicatedThread(True)
+    with pytest.raises(TfException, match='Invalid frame ID "nowhere" passed to canTransform argument source_frame'):
+        tf_.waitForTransform("map", "nowhere", RospyTime(0), RospyDuration(0.1))

@@ -4,20 +4,10 @@ tf_transformations, ROS 1's tf, tf.transformations and tf.msg, each the façade 
 from __future__ import annotations
 
 import importlib
-from collections.abc import Iterator
 
 import pytest
 
-from services.ros import disable_ros_imports, enable_ros_imports
-
-pytestmark = pytest.mark.timeout(30)
-
-
-@pytest.fixture(autouse=True)
-def ros_imports() -> Iterator[None]:
-    enable_ros_imports()
-    yield
-    disable_ros_imports()
+pytestmark = [pytest.mark.timeout(30), pytest.mark.usefixtures("ros_imports")]
 
 
 @pytest.mark.parametrize(

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import math
 import threading
-from collections.abc import Iterator
 
 import pytest
 
@@ -22,19 +21,8 @@ from shared_models.builtin_interfaces import Time as TimeMsg
 from shared_models.geometry_msgs import Quaternion, Transform, TransformStamped, Vector3
 from shared_models.std_msgs import Header, Int32
 from tests.ros.conftest import until
-from tests.web_ui.system import System
 
 pytestmark = [pytest.mark.timeout(60)]
-
-
-@pytest.fixture
-def rclpy(core: System, monkeypatch: pytest.MonkeyPatch) -> Iterator[object]:
-    from services.ros import rclpy as facade
-
-    monkeypatch.setenv("SKYDECK_CORE_URL", core.url)
-    facade.init(args=[])
-    yield facade
-    facade.shutdown()
 
 
 def _link(parent: str, child: str, nanoseconds: int, x: float, yaw: float = 0.0) -> TransformStamped:

@@ -41,6 +41,13 @@ def _strip(frame: str) -> str:
     return frame[1:] if isinstance(frame, str) and frame.startswith("/") else frame
 
 
+def _raise_unless(result: tuple[bool, str], source_frame: str, target_frame: str) -> None:
+    """``waitForTransform``'s end: tf.Exception with tf2's reason if the wait ran out."""
+    ok, error = result
+    if not ok:
+        raise TransformException(error or f'no such transformation: "{source_frame}" -> "{target_frame}"')
+
+
 def _pair(transform: TransformStamped) -> Pair:
     t, r = transform.transform.translation, transform.transform.rotation
     return [t.x, t.y, t.z], [r.x, r.y, r.z, r.w]
@@ -90,23 +97,23 @@ class Transformer:
     ) -> None:
         """Block until the transform can be had, or raise ``tf.Exception`` after ``timeout``."""
         self._check_listening()
-        ok, error = self._buffer.can_transform(
-            _strip(target_frame), _strip(source_frame), time, timeout, return_debug_tuple=True
-        )
-        if not ok:
-            raise TransformException(error or f'no such transformation: "{source_frame}" -> "{target_frame}"')
+        _raise_unless(
+            self._buffer.can_transform(_strip(target_frame), _strip(source_frame), time, timeout, return_debug_tuple=True),
+            source_frame, target_frame,
+        )  # fmt: skip
 
     def waitForTransformFull(
         self, target_frame: str, target_time: Any, source_frame: str, source_time: Any, fixed_frame: str,
         timeout: Any, polling_sleep_duration: Any = None,
     ) -> None:  # fmt: skip
         self._check_listening()
-        ok, error = self._buffer.can_transform_full(
-            _strip(target_frame), target_time, _strip(source_frame), source_time, _strip(fixed_frame), timeout,
-            return_debug_tuple=True,
+        _raise_unless(
+            self._buffer.can_transform_full(
+                _strip(target_frame), target_time, _strip(source_frame), source_time, _strip(fixed_frame), timeout,
+                return_debug_tuple=True,
+            ),
+            source_frame, target_frame,
         )  # fmt: skip
-        if not ok:
-            raise TransformException(error or f'no such transformation: "{source_frame}" -> "{target_frame}"')
 
     def _check_listening(self) -> None:
         if not self._using_dedicated_thread:
