@@ -198,9 +198,9 @@ class RosImportFinder(importlib.abc.MetaPathFinder):
         top, _, rest = fullname.partition(".")
         if top in EXTRAS and not rest:
             check_extra(top)  # one line if the extra (OpenCV...) is not installed; else on as usual
-        if top in FACADES:
+        if top in FACADES and not (rest.partition(".")[0] in _KINDS and _is_message_package(top)):
             return self._facade_spec(fullname, FACADES[top] + (f".{rest}" if rest else ""))
-        if _is_message_package(top):
+        if _is_message_package(top):  # (a façade's own messages too: actionlib.msg)
             if not rest and top not in MESSAGE_PACKAGES and self._found_elsewhere(fullname, path, target):
                 return None  # a catkin package's own Python module of the same name: its .msg is ours
             return self._view_spec(top, rest)

@@ -4,7 +4,6 @@ names, with the fields the tutorials use, as a course's code imports them."""
 from __future__ import annotations
 
 import importlib
-from collections.abc import Iterator
 
 import pytest
 
@@ -13,11 +12,7 @@ from services.ros.errors import NotProvidedImportError
 from shared_models import ActionType, Message, ServiceType
 
 
-@pytest.fixture(autouse=True)
-def ros_imports() -> Iterator[None]:
-    enable_ros_imports()
-    yield
-    disable_ros_imports()
+pytestmark = pytest.mark.usefixtures("ros_imports")
 
 
 def fields(cls: type[Message]) -> list[str]:
@@ -125,3 +120,16 @@ def test_every_view_holds_only_its_kind(module: str) -> None:
     view = importlib.import_module(module)
     tops = [getattr(view, name) for name in view.__all__ if "_" not in name and not name.endswith(("Request", "Response"))]
     assert tops and all(issubclass(cls, kind) for cls in tops), module
+
+
+def test_a_facade_that_is_also_a_message_package_keeps_its_messages(monkeypatch: pytest.MonkeyPatch) -> None:
+    # actionlib is an API (a façade, when Skydeck has one) and a message package (actionlib.msg)
+    from services.ros import imports
+
+    monkeypatch.setitem(imports.FACADES, "actionlib", "services.ros.rospy")  # any façade stands in
+    disable_ros_imports()
+    enable_ros_imports()
+    import actionlib
+    from actionlib.msg import TestGoal
+
+    assert hasattr(actionlib, "init_node") and TestGoal(goal=1).goal == 1

@@ -104,3 +104,20 @@ def test_shipped_types_are_never_sent(shipped: str) -> None:
     from shared_models.definitions.loader import definitions_of
 
     assert definitions_of([get_interface(shipped)]) == {}
+
+
+def test_rosapi_and_foxglove_describe_a_learned_type_as_a_shipped_one() -> None:
+    from services.core.protocols.foxglove_schema import channel_schema
+    from services.core.protocols.rosapi import typedefs
+
+    pkg = package()
+    learn_definitions({f"{pkg}/msg/Pose2": "# a pose\ngeometry_msgs/Point position\nuint8[] tag\nint32 MODE=1\n"})
+    cls = get_interface(f"{pkg}/msg/Pose2")
+    defs = {d.type: d for d in typedefs(cls)}
+    ours = defs[f"{pkg}/msg/Pose2"]
+    assert ours.fieldnames == ["position", "tag"] and "geometry_msgs/msg/Point" in defs
+    assert ours.fieldtypes == ["geometry_msgs/msg/Point", "uint8"] and ours.fieldarraylen == [-1, 0]
+    assert (ours.constnames, ours.constvalues) == (["MODE"], ["1"])
+    schema = json.loads(channel_schema(cls))
+    assert schema["properties"]["position"]["properties"]["x"]["type"] == "number"
+    assert schema["properties"]["tag"]["contentEncoding"] == "base64"
