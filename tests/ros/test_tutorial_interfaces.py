@@ -11,7 +11,6 @@ from services.ros import disable_ros_imports, enable_ros_imports
 from services.ros.errors import NotProvidedImportError
 from shared_models import ActionType, Message, ServiceType
 
-
 pytestmark = pytest.mark.usefixtures("ros_imports")
 
 
