@@ -120,17 +120,20 @@ def _short(ros_type: str) -> str:
     return ros_type.replace("/msg/", "/").replace("/srv/", "/").replace("/action/", "/")
 
 
-def interface_names(kind: str | None = None) -> list[str]:
+def interface_names(kind: str | None = None, *, package: str | None = None) -> list[str]:
     """The sorted names of every registered type; ``kind`` ``"msg"``, ``"srv"`` or ``"action"``
-    keeps one kind.
+    keeps one kind, ``package`` one package (and loads only that one: shell completion).
 
     The parts of services and actions (``std_srvs/srv/Trigger_Request``) are left out.
     """
     if kind not in (None, *_KINDS):
         raise ValueError(f"kind must be 'msg', 'srv', 'action' or None, not {kind!r}")
+    if package is not None:
+        load_any_package(package)
+    known = registered(f"{package}/") if package is not None else all_interfaces()
     return sorted(
         ros_type
-        for ros_type in all_interfaces()
+        for ros_type in known
         if not _is_part(ros_type) and (kind is None or ros_type.split("/")[1] == kind)
     )
 
