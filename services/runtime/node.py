@@ -282,6 +282,11 @@ class Node(ParametersMixin):
             self._spawn(timer.run(self._logger.logger))
         return timer
 
+    def is_linked(self, topic: str) -> bool:
+        """Whether this node receives ``topic`` (resolved as its subscriptions are) from at least
+        one publisher now."""
+        return self._participant.is_linked(self._names.resolve(topic))
+
     def destroy_node(self) -> None:
         """Stop the node; creating entities afterwards raises NodeError."""
         self._destroyed = True

@@ -5,6 +5,7 @@
     server.py     ActionServer: goals accepted, cancelled, executed, their results kept and expired
     client.py     ActionClient: goals sent, their feedback and status followed, results asked for
     transport.py  how a client reaches the graph (a node's calls and subscriptions)
+    messages.py   the types every action shares (action_msgs, unique_identifier_msgs; actionlib_msgs)
 
 The rclpy façade (``rclpy.action``), ``skydeck action`` and rosbridge's action ops build on
 these; see docs/ros.md, "Actions". The exports load lazily: listing actions needs only ``names``.

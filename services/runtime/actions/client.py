@@ -21,10 +21,11 @@ from collections.abc import Callable
 from typing import Any
 
 from services.runtime.actions.goals import TERMINAL_STATUSES, GoalStatusCode, new_goal_id
+from services.runtime.actions.messages import action_messages
 from services.runtime.actions.names import ActionNames
 from services.runtime.actions.transport import ActionTransport
 from services.runtime.errors import ServiceTimeoutError
-from shared_models import ActionType, Message, get_interface
+from shared_models import ActionType, Message, ServiceType
 
 __all__ = ["ActionClient", "ClientGoal"]
 
@@ -62,17 +63,15 @@ class ActionClient:
         self.action_type = action_type
         self.names = ActionNames(name)
         self._transport = transport
-        self._uuid = get_interface("unique_identifier_msgs/msg/UUID")
-        self._cancel_type = get_interface("action_msgs/srv/CancelGoal")
-        self._goal_info = get_interface("action_msgs/msg/GoalInfo")
-        self._services = (
+        self._messages = messages = action_messages()
+        self._services: tuple[tuple[str, type[ServiceType]], ...] = (
             (self.names.send_goal, action_type.SendGoal),
-            (self.names.cancel_goal, self._cancel_type),
+            (self.names.cancel_goal, messages.CancelGoal),
             (self.names.get_result, action_type.GetResult),
         )
         self._goals: dict[bytes, ClientGoal] = {}
         transport.subscribe(self.names.feedback, action_type.FeedbackMessage, self._feedback)
-        transport.subscribe(self.names.status, get_interface("action_msgs/msg/GoalStatusArray"), self._status)
+        transport.subscribe(self.names.status, messages.GoalStatusArray, self._status)
 
     # -- the server ---------------------------------------------------------------------------
 
@@ -109,7 +108,7 @@ class ActionClient:
         goal_id = goal_id or new_goal_id()
         tracked = ClientGoal(goal_id, on_feedback, on_status)
         self._goals[goal_id] = tracked  # before the answer: feedback may come first
-        request = self.action_type.SendGoal.Request(goal_id=self._uuid(uuid=goal_id), goal=goal)
+        request = self.action_type.SendGoal.Request(goal_id=self._messages.UUID(uuid=goal_id), goal=goal)
         try:
             response = await self._transport.call(self.names.send_goal, self.action_type.SendGoal, request, timeout_s)
         except BaseException:
@@ -125,7 +124,7 @@ class ActionClient:
     async def get_result(self, goal: ClientGoal) -> Any:
         """The goal's GetResult response (``status``, ``result``), once it has one; feedback
         for it stops then."""
-        request = self.action_type.GetResult.Request(goal_id=self._uuid(uuid=goal.goal_id))
+        request = self.action_type.GetResult.Request(goal_id=self._messages.UUID(uuid=goal.goal_id))
         while True:
             try:
                 response = await self._transport.call(
@@ -141,11 +140,12 @@ class ActionClient:
 
     async def cancel(self, goal: ClientGoal | None = None, *, timeout_s: float = _CALL_TIMEOUT_S) -> Any:
         """Ask the server to cancel ``goal`` (None: every goal it holds); its CancelGoal response."""
-        info = self._goal_info()
+        messages = self._messages
+        info = messages.GoalInfo()
         if goal is not None:
-            info.goal_id = self._uuid(uuid=goal.goal_id)
-        request = self._cancel_type.Request(goal_info=info)
-        return await self._transport.call(self.names.cancel_goal, self._cancel_type, request, timeout_s)
+            info.goal_id = messages.UUID(uuid=goal.goal_id)
+        request = messages.CancelGoal.Request(goal_info=info)
+        return await self._transport.call(self.names.cancel_goal, messages.CancelGoal, request, timeout_s)
 
     def close(self) -> None:
         """Stop following goals."""

@@ -32,9 +32,10 @@ from services.runtime.actions.goals import (
     goal_id_text,
     next_status,
 )
+from services.runtime.actions.messages import action_messages
 from services.runtime.actions.names import ActionNames
 from services.runtime.node import Node
-from shared_models import ActionType, Message, get_interface
+from shared_models import ActionType, Message
 
 __all__ = ["ActionServer", "ServerGoal"]
 
@@ -42,16 +43,6 @@ logger = logging.getLogger("skydeck.runtime")
 
 _FEEDBACK_DEPTH = 10  # rclpy's feedback publisher: QoSProfile(depth=10)
 DEFAULT_RESULT_TIMEOUT_S = 10.0
-
-
-def _action_msgs() -> tuple[Any, Any, Any, Any, Any]:
-    return (
-        get_interface("action_msgs/srv/CancelGoal"),
-        get_interface("action_msgs/msg/GoalInfo"),
-        get_interface("action_msgs/msg/GoalStatus"),
-        get_interface("action_msgs/msg/GoalStatusArray"),
-        get_interface("unique_identifier_msgs/msg/UUID"),
-    )
 
 
 class ServerGoal:
@@ -138,28 +129,27 @@ class ActionServer:
         self._on_accepted = on_accepted
         self._result_timeout_s = result_timeout_s
         self._expiries: dict[bytes, asyncio.TimerHandle] = {}
-        cancel_goal, self._goal_info, self._goal_status, self._status_array, self._uuid = _action_msgs()
-        self._cancel_type = cancel_goal
+        self._messages = messages = action_messages()
         self.feedback_publisher = node.create_publisher(action_type.FeedbackMessage, self.names.feedback, _FEEDBACK_DEPTH)
-        self.status_publisher = node.create_publisher(self._status_array, self.names.status, 1, latched=True)
+        self.status_publisher = node.create_publisher(messages.GoalStatusArray, self.names.status, 1, latched=True)
         node.create_service(action_type.SendGoal, self.names.send_goal, self._send_goal)
-        node.create_service(cancel_goal, self.names.cancel_goal, self._cancel_goal)
+        node.create_service(messages.CancelGoal, self.names.cancel_goal, self._cancel_goal)
         node.create_service(action_type.GetResult, self.names.get_result, self._get_result)
 
     # -- the three services -------------------------------------------------------------------
 
-    async def _send_goal(self, request: Any) -> Message:
+    async def _send_goal(self, request: Any) -> Any:
         goal_id = bytes(request.goal_id.uuid)
         accepted = False
         if goal_id in self.goals:
             logger.error("%s: a goal request came with the ID of a goal it holds (%s); refused", self.names.name, goal_id_text(goal_id))
         else:
             accepted = await self._on_goal(request.goal)
-        response = self.action_type.SendGoal.Response(accepted=accepted)
+        response: Any = self.action_type.SendGoal.Response(accepted=accepted)
         if not accepted or goal_id in self.goals:  # (the same ID twice at once: the first wins)
             response.accepted = False
             return response
-        info = self._goal_info(goal_id=request.goal_id, stamp=self.node.get_clock().now().to_msg())
+        info = self._messages.GoalInfo(goal_id=request.goal_id, stamp=self.node.get_clock().now().to_msg())
         goal = ServerGoal(self, info, request.goal)
         self.goals[goal_id] = goal
         response.stamp = info.stamp
@@ -169,7 +159,7 @@ class ActionServer:
         return response
 
     async def _cancel_goal(self, request: Any) -> Message:
-        codes = self._cancel_type.Response
+        codes = self._messages.CancelGoal.Response
         response, picked = self._pick_for_cancel(request.goal_info)
         agreed = []
         for goal in picked:
@@ -186,7 +176,7 @@ class ActionServer:
         """rcl_action's choice: an ID alone picks that goal (UNKNOWN_GOAL_ID, or GOAL_TERMINATED
         when it ended); a stamp picks every active goal accepted at or before it (and the ID's);
         neither picks every active goal."""
-        codes = self._cancel_type.Response
+        codes = self._messages.CancelGoal.Response
         response = codes(return_code=codes.ERROR_NONE)
         goal_id = bytes(goal_info.goal_id.uuid)
         stamp_ns = goal_info.stamp.to_nsec()
@@ -218,8 +208,9 @@ class ActionServer:
 
     def publish_status(self) -> None:
         """Publish every goal held and its status (latched: a late client gets it at once)."""
-        statuses = [self._goal_status(goal_info=goal.info, status=goal.status) for goal in self.goals.values()]
-        self.status_publisher.publish(self._status_array(status_list=statuses))
+        messages = self._messages
+        statuses = [messages.GoalStatus(goal_info=goal.info, status=goal.status) for goal in self.goals.values()]
+        self.status_publisher.publish(messages.GoalStatusArray(status_list=statuses))
 
     def expire_later(self, goal: ServerGoal) -> None:
         """Forget ``goal`` ``result_timeout_s`` from now (its result and its status line)."""

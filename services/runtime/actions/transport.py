@@ -12,14 +12,13 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any, Protocol
 
-from services.runtime.participant import Participant
 from shared_models import Message, ServiceType
 
 if TYPE_CHECKING:
     from services.runtime.client import Client
     from services.runtime.node import Node
 
-__all__ = ["ActionTransport", "NodeTransport", "linked"]
+__all__ = ["ActionTransport", "NodeTransport"]
 
 _FEEDBACK_DEPTH = 100  # generous: a client falling behind loses the oldest feedback first
 
@@ -42,11 +41,6 @@ class ActionTransport(Protocol):
 
     def close(self) -> None:
         """Stop every subscription (the client is destroyed)."""
-
-
-def linked(participant: Participant, topic: str) -> bool:
-    """Whether ``participant`` has a connected link to a publisher of ``topic``."""
-    return any(key[0] == topic and link.connected.is_set() for key, (link, _) in participant.links.items())
 
 
 class NodeTransport:
@@ -80,7 +74,7 @@ class NodeTransport:
         return True
 
     def linked(self, topic: str) -> bool:
-        return linked(self._node._participant, self._node.resolve_topic_name(topic))
+        return self._node.is_linked(topic)
 
     def close(self) -> None:
         self._closed = True

@@ -27,6 +27,7 @@ from services.ros.rclpy.waitable import JobQueue, run_callback
 from services.runtime.actions.client import ActionClient as LoopActionClient
 from services.runtime.actions.client import ClientGoal
 from services.runtime.actions.goals import new_goal_id
+from services.runtime.actions.messages import action_messages
 from services.runtime.actions.transport import NodeTransport
 from shared_models import ActionType, Message
 
@@ -129,7 +130,7 @@ class ActionClient(JobQueue):
         on_feedback = None
         if feedback_callback is not None:
             on_feedback = lambda message: self.put(lambda: run_callback(feedback_callback, message))  # noqa: E731
-        uuid = self._loop._uuid(uuid=goal_id)
+        uuid = action_messages().UUID(uuid=goal_id)
         sent = self._loop.send_goal(goal, goal_id=goal_id, on_feedback=on_feedback)
         return self._future(sent, lambda tracked: ClientGoalHandle(self, tracked, uuid))
 
