@@ -14,7 +14,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from services.cli.arguments import known_type, positive_float, ros_name
-from services.cli.core_client import core_url, get_json
+from services.cli.core_client import core_url, get_json, node_settings
 from services.cli.errors import CliError
 
 if TYPE_CHECKING:
@@ -88,7 +88,7 @@ def _record(args: argparse.Namespace) -> int:
     metadata = _metadata()  # also checks that the core answers, before a file is made
     writer = BagWriter.create(path, metadata=metadata)
     print(f"recording to {path} (Ctrl-C stops)", flush=True)
-    recorder = Recorder(writer, selection, limits=limits, settings=_node_settings(), say=_say)
+    recorder = Recorder(writer, selection, limits=limits, settings=node_settings(), say=_say)
     try:
         _run(recorder)
     finally:
@@ -178,7 +178,7 @@ def _play(args: argparse.Namespace) -> int:
         for topic in reader.summary.topics:  # a workspace's own types: the folder's, or the core's
             with contextlib.suppress(CliError):
                 known_type(topic.type_name)
-        player = Player(reader, options, settings=_node_settings(), say=_say)
+        player = Player(reader, options, settings=node_settings(), say=_say)
         check_types(get_json("/api/graph")["topics"], player.played_types)
         summary = reader.summary
         print(
@@ -204,12 +204,6 @@ def _remap(text: str) -> tuple[str, str]:
 
 def _say(line: str) -> None:
     print(line, flush=True)
-
-
-def _node_settings() -> Any:
-    from services.runtime.settings import NodeSettings, process_settings
-
-    return process_settings(NodeSettings).model_copy(update={"port": 0})
 
 
 def _run(node: Node, keys: Callable[[], contextlib.AbstractContextManager[bool]] | None = None) -> bool:

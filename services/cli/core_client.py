@@ -11,7 +11,7 @@ from services.runtime.settings import DEFAULT_CORE_URL
 if TYPE_CHECKING:
     import httpx
 
-__all__ = ["auth_headers", "core_url", "error_detail", "get_json", "post_json", "ws_url"]
+__all__ = ["auth_headers", "core_url", "error_detail", "get_json", "node_settings", "post_json", "ws_url"]
 
 
 def core_url() -> str:
@@ -31,6 +31,14 @@ def ws_url(path: str, **query: Any) -> str:
     scheme, _, rest = base.partition("://")
     params = "&".join(f"{k}={v}" for k, v in query.items() if v is not None)
     return f"{'wss' if scheme == 'https' else 'ws'}://{rest}{path}" + (f"?{params}" if params else "")
+
+
+def node_settings() -> Any:
+    """The settings of a node the CLI runs itself (a recorder, an action client): the
+    process's, on a port of its own choosing."""
+    from services.runtime.settings import NodeSettings, process_settings
+
+    return process_settings(NodeSettings).model_copy(update={"port": 0})
 
 
 def _unreachable(error: Exception) -> CliError:

@@ -1,18 +1,22 @@
 """A Fibonacci action as a course runs it: servers and clients are user files started by
 ``skydeck run`` against a real core, ROS 2's (rclpy.action) and ROS 1's (actionlib); what they
 print is checked: the feedback sequence, the result, a cancel mid-way, two goals at once, a
-refused goal."""
+refused goal; and the same through `skydeck action`."""
 
 from __future__ import annotations
 
+import os
 import re
+import signal
+import subprocess
+import sys
 from collections.abc import Iterator
 
 import pytest
 
 from services.launch.background import BackgroundProcess
 from tests.ros.conftest import CORPUS, ros_file
-from tests.web_ui.system import System
+from tests.web_ui.system import REPO, System
 
 pytestmark = [pytest.mark.timeout(120)]
 
@@ -106,3 +110,74 @@ def test_ros1_cancel_preempts_the_goal(core: System, ros1_server: BackgroundProc
     assert "done: state 2" in lines and "state: PREEMPTED" in lines
     assert 2 <= len(_lists(lines, "feedback:")) < 29
     ros1_server.wait_for_line("/fibonacci: Preempted", 10)
+
+
+# -- the CLI ------------------------------------------------------------------------------------
+
+
+def _skydeck(system: System, *args: str, timeout_s: float = 60) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "services.cli", *args], cwd=REPO, capture_output=True, text=True, timeout=timeout_s,
+        env={**os.environ, "SKYDECK_CORE_URL": system.url},
+    )  # fmt: skip
+
+
+def test_cli_lists_and_describes_actions(core: System, ros2_server: BackgroundProcess, ros1_server: BackgroundProcess) -> None:
+    listed = _skydeck(core, "action", "list")
+    typed = _skydeck(core, "action", "list", "-t")
+    info = _skydeck(core, "action", "info", "fibonacci")
+    unknown = _skydeck(core, "action", "info", "/nothing_here")
+    assert listed.stdout.splitlines() == ["/fibonacci"]  # ROS 1's actionlib topics are no ROS 2 action
+    assert typed.stdout.splitlines() == ["/fibonacci [example_interfaces/action/Fibonacci]"]
+    assert info.stdout.splitlines() == [
+        "Action: /fibonacci", "Action clients: 0", "Action servers: 1", "    /fibonacci_action_server"]  # fmt: skip
+    assert unknown.returncode == 1 and unknown.stderr == "skydeck: error: unknown action /nothing_here: see `skydeck action list`\n"
+
+
+def test_cli_sends_a_goal_and_prints_feedback_and_result(core: System, ros2_server: BackgroundProcess) -> None:
+    done = _skydeck(core, "action", "send_goal", "/fibonacci", "example_interfaces/action/Fibonacci", "{order: 5}", "--feedback")
+    assert done.returncode == 0, done.stderr
+    text = done.stdout
+    assert text.startswith("Waiting for an action server to become available...\nSending goal:\n     order: 5\n\nGoal accepted with ID: ")
+    goal_id = text.split("Goal accepted with ID: ")[1].split("\n")[0]
+    assert re.fullmatch(r"[0-9a-f]{32}", goal_id)
+    feedback = [block.split("Result:")[0] for block in text.split("Feedback:\n")[1:]]
+    assert [[int(n) for n in re.findall(r"- (\d+)", block)] for block in feedback] == [FIBONACCI[: n + 1] for n in range(2, 6)]
+    assert "Result:\n    sequence:\n- 0\n- 1\n- 1\n- 2\n- 3\n- 5\n\nGoal finished with status: SUCCEEDED\n" in text
+    quiet = _skydeck(core, "action", "send_goal", "fibonacci", "example_interfaces/action/Fibonacci", '{"order": 2}')
+    assert "Feedback:" not in quiet.stdout and "Goal finished with status: SUCCEEDED" in quiet.stdout
+    refused = _skydeck(core, "action", "send_goal", "/fibonacci", "example_interfaces/action/Fibonacci", "{order: 0}")
+    assert refused.returncode == 0 and refused.stdout.endswith("Goal was rejected.\n")
+
+
+@pytest.mark.parametrize(
+    ("args", "error"),
+    [
+        (("/fibonacci", "actionlib_tutorials/action/Fibonacci", "{order: 3}"),
+         "/fibonacci is an action of type example_interfaces/action/Fibonacci, not actionlib_tutorials/action/Fibonacci"),
+        (("/fibonacci", "example_interfaces/action/Fibonacci", "{ordr: 3}"),
+         "invalid example_interfaces/action/Fibonacci_Goal: ordr: Extra inputs are not permitted"),
+        (("/fibonacci", "std_srvs/srv/Trigger"), "std_srvs/srv/Trigger is not an action type"),
+        (("/fibonacci", "example_interfaces/action/Fibonaci"), "example_interfaces/action/Fibonaci"),
+        (("/fibonacci", "example_interfaces/action/Fibonacci", "[1, 2]"), "DATA must be a mapping of fields"),
+    ],
+)  # fmt: skip
+def test_cli_goal_errors_are_one_line(core: System, ros2_server: BackgroundProcess, args: tuple[str, ...], error: str) -> None:
+    result = _skydeck(core, "action", "send_goal", *args)
+    assert result.returncode == 1 and result.stdout == ""
+    assert result.stderr.startswith("skydeck: error: ") and error in result.stderr and result.stderr.count("\n") == 1, result.stderr
+
+
+def test_cli_ctrl_c_cancels_the_goal(core: System, ros2_server: BackgroundProcess) -> None:
+    sender = BackgroundProcess(
+        [sys.executable, "-m", "services.cli", "action", "send_goal", "/fibonacci", "example_interfaces/action/Fibonacci",
+         "{order: 40}", "--feedback"],
+        name="skydeck action send_goal", cwd=REPO, env={**os.environ, "SKYDECK_CORE_URL": core.url, "PYTHONUNBUFFERED": "1"},
+    )  # fmt: skip
+    try:
+        sender.wait_for_line("Feedback:", 30)
+        sender.stop(signal.SIGINT)
+    finally:
+        sender.stop()
+    assert sender.returncode == 130 and "Canceling goal..." in sender.lines and "Goal canceled." in sender.lines
+    ros2_server.wait_for_line("Goal canceled", 10)
