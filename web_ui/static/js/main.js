@@ -1,5 +1,6 @@
 // Wires the dashboard together and exposes a read-only debug hook on `window.skydeck`.
 
+import { ActionsPanel } from "./actions.js";
 import { socketStates } from "./api.js";
 import { initTokenButton } from "./auth.js";
 import { CameraView } from "./camera.js";
@@ -102,6 +103,7 @@ const layersPanel = new LayersPanel({
   list: $("layer-list"),
 });
 const parameters = new ParametersPanel({ node: $("param-node"), table: $("param-list"), result: $("param-result"), refresh: $("param-refresh") });
+const actions = new ActionsPanel({ table: $("action-list"), empty: $("action-empty") });
 
 graph.addEventListener("update", () => {
   commands.updateGraph(graph.graph);
@@ -111,6 +113,7 @@ graph.addEventListener("update", () => {
   inspector.updateGraph(graph.graph);
   layersPanel.updateGraph(graph.graph);
   parameters.updateGraph(graph.graph);
+  actions.updateGraph(graph.graph);
   view3d.updateGraph(graph.graph);
 });
 function expandGraph(expanded) {
@@ -126,6 +129,7 @@ window.addEventListener("keydown", (event) => {
 tabs.addEventListener("change", () => {
   if (tabs.current === "graph" && graph.graph) diagram.render(graph.graph);
   parameters.setVisible(tabs.current === "parameters");
+  actions.setVisible(tabs.current === "actions");
 });
 
 const teleop = new Teleop({
@@ -266,6 +270,10 @@ window.skydeck = Object.freeze({
   },
   get parameters() {
     return { node: parameters.node, rows: copy(parameters.rows), last: copy(parameters.last) };
+  },
+  /** The Actions tab's rows (while it is shown): [{action, type, goal, status, feedback}]. */
+  get actions() {
+    return actions.snapshot();
   },
   get recorder() {
     return { recording: recorder.recording, current: copy(recorder.current), files: copy(recorder.files), error: recorder.error };
