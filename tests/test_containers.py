@@ -26,10 +26,10 @@ import yaml
 
 from services.builtin_nodes import BUILTIN_NODES
 from services.cli.main import build_parser
-from services.core.protocols.servers import bind_endpoints
-from services.core.settings import CoreSettings
 from services.launch.plan import LaunchOptions, plan_launch
 from services.launch.spec import find_launch_file, load_launch_file
+from services.protocols.core_process import bind_endpoints
+from services.protocols.settings import CoreProcessSettings
 from services.runtime.ports import free_port_block
 from sim_server.node import SimSettings
 from tests.compose_config import (
@@ -193,7 +193,7 @@ def test_the_cores_endpoints_listen_where_the_core_does(started: dict[str, dict[
     # --host (0.0.0.0) must be the endpoints' too. Bound on free ports, and closed, never served.
     args, _ = _command(started["core"])
     base = free_port_block(2)
-    settings = CoreSettings(host=args.host, port=0, rosbridge_port=base, foxglove_port=base + 1)
+    settings = CoreProcessSettings(host=args.host, port=0, rosbridge_port=base, foxglove_port=base + 1)
     sockets = bind_endpoints(settings)
     try:
         assert {name: sock.getsockname()[0] for name, sock in sockets.items()} == {
@@ -357,7 +357,7 @@ def test_the_images_wheel_carries_both_worlds_and_the_endpoints(tmp_path: Path) 
     assert built.returncode == 0, built.stderr
     (wheel,) = tmp_path.glob("*.whl")
     names = set(zipfile.ZipFile(wheel).namelist())
-    modules = [*BUILTIN_NODES.values(), "services.core.app", "services.core.protocols.servers", "sim_server.robot.node"]
+    modules = [*BUILTIN_NODES.values(), "services.core.app", "services.protocols.core_process", "sim_server.robot.node"]
     wanted = {module.replace(".", "/") + ".py" for module in modules}
     wanted |= {f"services/launch/{name}.yaml" for name in LAUNCH_FILE.values()}
     static = ROOT / "web_ui" / "static"

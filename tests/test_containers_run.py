@@ -45,9 +45,9 @@ from tests.compose_config import (
     started_services,
 )
 from tests.conftest import await_registered
-from tests.services.core.protocols.test_foxglove import binary
-from tests.services.core.protocols.test_foxglove import receive as foxglove_receive
-from tests.services.core.protocols.test_rosbridge import call as rosbridge_call
+from tests.services.protocols.test_foxglove import binary
+from tests.services.protocols.test_foxglove import receive as foxglove_receive
+from tests.services.protocols.test_rosbridge import call as rosbridge_call
 
 pytestmark = [pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(180)]
 

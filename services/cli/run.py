@@ -80,11 +80,11 @@ def _core(args: argparse.Namespace) -> int:
     if args.extra:
         raise CliError(f"unknown option for `skydeck core`: {' '.join(args.extra)}")
     _apply_flags(args)
-    from services.core.server import serve
-    from services.core.settings import CoreSettings
+    from services.protocols.core_process import serve
+    from services.protocols.settings import CoreProcessSettings
     from services.runtime.settings import process_settings
 
-    serve(process_settings(CoreSettings))
+    serve(process_settings(CoreProcessSettings))
     return 0
 
 

@@ -18,9 +18,9 @@ import sys
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
-from services.core.settings import CoreSettings
 from services.launch.errors import LaunchError
 from services.launch.spec import LaunchSpec, NodeSpec
+from services.protocols.endpoints import ENDPOINTS
 from sim_server.robot.limits import MAX_ROBOTS  # constants only: no PyBullet
 
 __all__ = [
@@ -92,13 +92,13 @@ class LaunchOptions:
         """The ports the core's protocol endpoints will listen on (those that are on), by the
         flag that sets each: the option, else the core's ``SKYDECK_*`` setting in ``environ``."""
         ports = {}
-        for flag, setting in _ENDPOINTS:
-            port = getattr(self, setting)
+        for endpoint in ENDPOINTS:
+            port = getattr(self, endpoint.setting)
             if port is None:
-                text = environ.get(CoreSettings.model_config["env_prefix"] + setting.upper(), "")
-                port = int(text) if text.isdigit() else CoreSettings.model_fields[setting].default
+                text = environ.get(endpoint.env_var, "")
+                port = int(text) if text.isdigit() else endpoint.default_port
             if port:
-                ports[flag] = port
+                ports[endpoint.flag] = port
         return ports
 
     def placeholders(self) -> dict[str, str]:

@@ -14,7 +14,7 @@ from websockets.asyncio.client import ClientConnection, connect
 
 from tests.conftest import wait_until
 from tests.services.cli.test_cli import skydeck
-from tests.services.core.protocols.conftest import Bridge, stuck_node
+from tests.services.protocols.conftest import Bridge, stuck_node
 
 pytestmark = pytest.mark.timeout(60)
 

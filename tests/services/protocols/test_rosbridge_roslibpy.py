@@ -7,7 +7,7 @@ import asyncio
 import pytest
 
 from tests.conftest import wait_until
-from tests.services.core.protocols.conftest import Bridge, Tuned, stuck_node
+from tests.services.protocols.conftest import Bridge, Tuned, stuck_node
 
 pytestmark = pytest.mark.timeout(90)
 
