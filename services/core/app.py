@@ -138,8 +138,14 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
 
     @app.get("/health", tags=["core"])
     async def health() -> dict[str, Any]:
-        """Liveness of the core."""
-        return {"status": "ok", "node": CORE_NODE, "pid": os.getpid(), "nodes": len(registry.nodes)}
+        """Liveness of the core, and the ports of its protocol endpoints (by name)."""
+        return {
+            "status": "ok",
+            "node": CORE_NODE,
+            "pid": os.getpid(),
+            "nodes": len(registry.nodes),
+            "endpoints": servers.ports,
+        }
 
     @app.websocket("/api/session")
     async def session(websocket: WebSocket) -> None:

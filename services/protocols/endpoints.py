@@ -21,12 +21,14 @@ from __future__ import annotations
 
 import importlib
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
+
+from pydantic import Field
 
 if TYPE_CHECKING:
     from services.core.endpoint_servers import EndpointPlugin
 
-__all__ = ["DEFAULT_BASE_PORT", "ENDPOINTS", "Endpoint", "endpoint_named", "load_plugin"]
+__all__ = ["DEFAULT_BASE_PORT", "ENDPOINTS", "Endpoint", "endpoint_named", "endpoint_port_fields", "load_plugin"]
 
 DEFAULT_BASE_PORT = 8000
 """The core's default port: the base at which every default port of the table holds."""
@@ -92,3 +94,21 @@ def load_plugin(endpoint: Endpoint) -> EndpointPlugin:
     module, _, attribute = endpoint.plugin.partition(":")
     plugin: EndpointPlugin = getattr(importlib.import_module(module), attribute)
     return plugin
+
+
+def endpoint_port_fields(*, given_only: bool = False) -> dict[str, Any]:
+    """A pydantic field per endpoint of the table, named by its ``setting`` (so read from its
+    ``SKYDECK_*_PORT``): defaulting to its default port, or with ``given_only`` to None (the
+    launcher, which moves a port nobody gave with the base port)."""
+    return {
+        endpoint.setting: (
+            int | None if given_only else int,
+            Field(
+                default=None if given_only else endpoint.default_port,
+                ge=0,
+                le=65535,
+                description=f"{endpoint.summary}; 0: off",
+            ),
+        )
+        for endpoint in ENDPOINTS
+    }

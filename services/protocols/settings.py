@@ -9,30 +9,20 @@ The port fields are made from :data:`~services.protocols.endpoints.ENDPOINTS` (a
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
-from pydantic import Field, create_model
+from pydantic import create_model
 
 from services.core.settings import CoreSettings
-from services.protocols.endpoints import ENDPOINTS, Endpoint
+from services.protocols.endpoints import Endpoint, endpoint_port_fields
 
 __all__ = ["CoreProcessSettings"]
-
-
-def _port_fields() -> dict[str, Any]:
-    return {
-        endpoint.setting: (
-            int,
-            Field(default=endpoint.default_port, ge=0, le=65535, description=f"{endpoint.summary}; 0: off"),
-        )
-        for endpoint in ENDPOINTS
-    }
 
 
 if TYPE_CHECKING:  # the fields are made at run time; the type checker sees the core's settings
     _WithEndpointPorts = CoreSettings
 else:
-    _WithEndpointPorts = create_model("_WithEndpointPorts", __base__=CoreSettings, **_port_fields())
+    _WithEndpointPorts = create_model("_WithEndpointPorts", __base__=CoreSettings, **endpoint_port_fields())
 
 
 class CoreProcessSettings(_WithEndpointPorts):
