@@ -31,7 +31,7 @@ from services.core.guests import Guests
 from services.core.openapi import aggregate_openapi
 from services.core.parameter_server import ParameterTree
 from services.core.parameter_server import router as parameter_server_router
-from services.core.recordings import Recordings, default_recordings_dir
+from services.core.recordings import Recordings
 from services.core.recordings import router as recordings_router
 from services.core.registry import Registry
 from services.core.service_calls import ServiceCalls
@@ -102,7 +102,7 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
         app.state.http = http
         app.state.gateway = gateway
         app.state.calls = calls
-        app.state.recordings = Recordings(settings.recordings_dir or default_recordings_dir(), core_node, registry)
+        app.state.recordings = Recordings(settings.recordings_folder, core_node, registry)
         await servers.start(CoreAccess(core_node, registry, guests, calls, gateway, settings))
         try:
             yield

@@ -28,3 +28,8 @@ class CoreSettings(ProcessSettings):
 
     # Recordings made from the dashboard (`/api/recordings`); None: $XDG_DATA_HOME/skydeck/recordings.
     recordings_dir: Path | None = None
+
+    @property
+    def recordings_folder(self) -> Path:
+        """``recordings_dir``, else ``$XDG_DATA_HOME/skydeck/recordings`` (``~/.local/share/...``)."""
+        return self.recordings_dir or self.skydeck_data_dir / "recordings"
