@@ -6,10 +6,10 @@
 Each JSON text frame is one op (:mod:`.ops` reads them). Topics are read and published
 through the connection's :class:`~services.protocols.session.ClientSession` (an outbox per
 topic, the edge's validation, token and "no echo"); ``call_service`` takes the HTTP gateway's
-call path, and always ends with a ``service_response`` (``result: false`` and the reason in
-``values`` when no answer came within its ``timeout``, or the gateway's; a ``status`` error
-too). A service a client advertises is hosted by the core for it, so nodes and ``curl`` call
-it like any other.
+call path, and always ends with a ``service_response``: ``result: false`` and the reason in
+``values`` when it failed (no service, no answer within its ``timeout`` or the gateway's, no
+token), and nothing else, as rosbridge_server answers. A service a client advertises is hosted
+by the core for it, so nodes and ``curl`` call it like any other.
 
 A bad frame gets a ``status`` (level ``error``, the op's ``id``) and nothing else happens;
 ``set_level`` asks for ``warning`` and ``info`` statuses too, or ``none``. Statuses are replies
@@ -255,10 +255,10 @@ class _Connection:
                 values, result = json.loads(reply.body), True
             else:
                 values, result = reply.detail(), False
-        except (Refused, SkydeckError, ValueError) as error:
+        except (SkydeckError, ValueError) as error:
             values, result, name = str(error), False, op.service
-        if not result:  # as rosbridge_server: the failure is also a status error (to the call's id)
-            await self._status("error", f"call_service {name}: {values}", op.id)
+        # A failure is this response alone, as rosbridge_server sends it (it logs the error on its
+        # side and sends no `status`, for which roslibpy has no handler: issue 32).
         response: dict[str, Any] = {"op": "service_response", "service": name, "values": values, "result": result}
         if op.id is not None:
             response["id"] = op.id
