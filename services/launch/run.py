@@ -6,12 +6,11 @@ A YAML launch file (:mod:`services.launch.spec`) lists every process, the core i
 roslaunch XML file (:mod:`services.launch.roslaunch`) lists nodes and parameters only. Either
 way the launch first looks for a running core, as roslaunch looks at ``ROS_MASTER_URI``: at
 ``SKYDECK_CORE_URL`` if it is set (and ``--base-port`` is not given), else at the launch's own
-core URL (``--base-port``). If one answers there, the launch's nodes join it and no core is
-started (so a roslaunch file runs beside ``skydeck launch --exclude perception,control,ai``);
-if none does, the launch starts its core there: on the port ``SKYDECK_CORE_URL`` names, which
-then is the base port, when that URL is this machine's (a core elsewhere is not started for it,
-as roslaunch starts no roscore for a remote master). Both go to the same
-:class:`~services.launch.supervisor.Supervisor`.
+core URL (``--base-port``); a local ``SKYDECK_CORE_URL``'s port is then the base port. If a core
+answers there, the launch's nodes join it and no core is started (so a roslaunch file runs
+beside ``skydeck launch --exclude perception,control,ai``); if none does, the launch starts its
+core there, unless the URL is another machine's (as roslaunch starts no roscore for a remote
+master: one line says so). Both go to the same :class:`~services.launch.supervisor.Supervisor`.
 """
 
 from __future__ import annotations
@@ -71,6 +70,8 @@ def run_launch(
     else:
         spec, parameters = load_launch_file(file, launch_args or {}), ()
     looked_at = settings.core_url.rstrip("/") if settings.core_url_given and not base_port_given else None
+    if looked_at is not None and _this_machine(looked_at):  # its port is the base port
+        options = dataclasses.replace(options, base_port=_base_port_at(looked_at, spec))
     url = looked_at or core_url(spec, options)
     running = core_answers(url)
     if running:
@@ -79,8 +80,11 @@ def run_launch(
             spec = ros.spec(start_core=False)
         else:
             options = _without_core(spec, options, url)
-    elif looked_at is not None:
-        options = dataclasses.replace(options, base_port=_base_port_at(looked_at, spec))
+    elif looked_at is not None and not _this_machine(looked_at):
+        raise LaunchError(
+            f"no core answers at SKYDECK_CORE_URL={looked_at}, which is not this machine: start the core "
+            "there, or unset SKYDECK_CORE_URL (or give --base-port) to start one here"
+        )
     supervisor = Supervisor(
         spec, options, out=out, control=not running, parameters=parameters, settings=settings,
         core_url=url if running else None,
@@ -96,19 +100,17 @@ def _without_core(spec: LaunchSpec, options: LaunchOptions, url: str) -> LaunchO
     return dataclasses.replace(options, exclude=(*options.exclude, *cores))
 
 
-def _base_port_at(url: str, spec: LaunchSpec) -> int:
-    """The base port that starts the launch's core at ``url`` (``SKYDECK_CORE_URL``, where no
-    core answers); LaunchError unless ``url`` is this machine's."""
+def _this_machine(url: str) -> bool:
     parts = urllib.parse.urlsplit(url)
-    if parts.hostname not in _THIS_MACHINE or parts.scheme != "http":
-        raise LaunchError(
-            f"no core answers at SKYDECK_CORE_URL={url}, which is not this machine: start the core there, "
-            "or unset SKYDECK_CORE_URL (or give --base-port) to start one here"
-        )
+    return parts.scheme == "http" and parts.hostname in _THIS_MACHINE
+
+
+def _base_port_at(url: str, spec: LaunchSpec) -> int:
+    """The base port that puts the launch's core at ``url`` (a local ``SKYDECK_CORE_URL``)."""
     offset = next((node.port_offset for node in spec.nodes if node.is_core), 0)
-    port = parts.port or 80
+    port = urllib.parse.urlsplit(url).port or 80
     if port - offset < 1:
-        raise LaunchError(f"SKYDECK_CORE_URL={url}: the core cannot start on port {port} (it needs a base port of 1 or more)")
+        raise LaunchError(f"SKYDECK_CORE_URL={url}: the launch's core cannot be on port {port} (its base port would be below 1)")
     return port - offset
 
 
