@@ -9,7 +9,8 @@ writes:
 - every property a plain ``type`` (they know no ``anyOf``, ``null`` or missing types): ROS's
   integer types ``integer``, ``float32``/``float64`` ``number``, ``bool`` ``boolean``, strings
   ``string``; arrays with ``minItems``/``maxItems`` for fixed and bounded sizes;
-- ``uint8[]``/``byte[]`` as base64 text (``contentEncoding: base64``, which they decode to bytes);
+- ``uint8``/``byte`` arrays, of any size (``uint8[16]`` too), as base64 text
+  (``contentEncoding: base64``, which they decode to bytes), as a message's JSON writes them;
 - a time (builtin_interfaces Time or Duration) as ROS 2's ``{sec, nanosec}`` and Foxglove's
   ``nsec``: Foxglove and Lichtblick read every time as ``{sec, nsec}`` (their 3D panel takes the
   nanoseconds from ``nsec`` alone), ROS 2 code from ``nanosec``. :func:`with_nsec` gives a
@@ -65,7 +66,7 @@ def _schema(cls: type[Message]) -> dict[str, Any]:
     for name, text, nested in field_types(cls):
         bracket = _BRACKETS.search(text)
         base = text[: bracket.start()] if bracket else text
-        if base in ("uint8", "byte") and bracket and not bracket.group(2):
+        if base in ("uint8", "byte") and bracket:  # bytes, as a message's JSON writes them, any size
             properties[name] = {"type": "string", "contentEncoding": "base64"}
             continue
         item = _schema(nested) if nested is not None else _primitive(base)
