@@ -2,11 +2,10 @@
 
 from __future__ import annotations
 
-import os
 from typing import TYPE_CHECKING, Any
 
 from services.cli.errors import CliError
-from services.runtime.settings import DEFAULT_CORE_URL
+from services.cli.settings import cli_settings
 
 if TYPE_CHECKING:
     import httpx
@@ -16,12 +15,12 @@ __all__ = ["auth_headers", "core_url", "error_detail", "get_json", "node_setting
 
 def core_url() -> str:
     """The core's URL: ``SKYDECK_CORE_URL`` or the default ``http://127.0.0.1:8000``."""
-    return os.environ.get("SKYDECK_CORE_URL", DEFAULT_CORE_URL).rstrip("/")
+    return cli_settings().core_url.rstrip("/")
 
 
 def auth_headers() -> dict[str, str]:
     """The Authorization header when ``SKYDECK_TOKEN`` is set."""
-    token = os.environ.get("SKYDECK_TOKEN", "")
+    token = cli_settings().token
     return {"Authorization": f"Bearer {token}"} if token else {}
 
 
@@ -36,9 +35,9 @@ def ws_url(path: str, **query: Any) -> str:
 def node_settings() -> Any:
     """The settings of a node the CLI runs itself (a recorder, an action client): the
     process's, on a port of its own choosing."""
-    from services.runtime.settings import NodeSettings, process_settings
+    from services.runtime.settings import node_settings as process_node_settings
 
-    return process_settings(NodeSettings).model_copy(update={"port": 0})
+    return process_node_settings().model_copy(update={"port": 0})
 
 
 def _unreachable(error: Exception) -> CliError:
