@@ -16,7 +16,7 @@ from typing import Any
 from services.cli.arguments import known_type, ros_name
 from services.cli.core_client import get_json, node_settings
 from services.cli.errors import CliError
-from services.cli.formatting import parse_data, to_yaml
+from services.cli.formatting import message_from, to_yaml
 from services.runtime.actions.names import ActionInGraph, actions_in_graph
 
 __all__ = ["add_parser"]
@@ -71,9 +71,6 @@ def _info(args: argparse.Namespace) -> int:
 
 
 def _send_goal(args: argparse.Namespace) -> int:
-    from pydantic import ValidationError
-
-    from services.runtime.edge.frames import describe_validation_error
     from shared_models import ActionType
 
     name = ros_name(args.action)
@@ -83,10 +80,7 @@ def _send_goal(args: argparse.Namespace) -> int:
     serving = _actions().get(name)
     if serving is not None and serving.type and serving.type != action_type.__ros_type__:
         raise CliError(f"{name} is an action of type {serving.type}, not {action_type.__ros_type__}")
-    try:
-        goal = action_type.Goal.model_validate(parse_data(args.goal))
-    except ValidationError as error:
-        raise CliError(describe_validation_error(action_type.Goal.__ros_type__, error)) from None
+    goal = message_from(args.goal, action_type.Goal)
     try:
         asyncio.run(_run_goal(name, action_type, goal, feedback=args.feedback))
     except KeyboardInterrupt:

@@ -13,7 +13,7 @@ from websockets.exceptions import ConnectionClosed, InvalidHandshake
 from services.cli.arguments import known_type, positive_float, positive_int, ros_name
 from services.cli.core_client import auth_headers, core_url, get_json, ws_url
 from services.cli.errors import CliError
-from services.cli.formatting import message_view, parse_data, to_csv, to_yaml
+from services.cli.formatting import message_from, message_view, to_csv, to_yaml
 from services.cli.streams import frames, warn_if_unpublished
 from services.cli.topic_stats import add_stats_parsers
 from shared_models.close_codes import Close
@@ -148,19 +148,13 @@ def _echo(args: argparse.Namespace) -> int:
 
 def _pub(args: argparse.Namespace) -> int:
     # The message types and the validation, here and not at the top: see cli/interface.py.
-    from pydantic import ValidationError
-
-    from services.runtime.edge.frames import describe_validation_error
     from shared_models import Message
 
     name = ros_name(args.topic)
     msg_type = known_type(args.type)
     if not issubclass(msg_type, Message):
         raise CliError(f"{args.type} is a service type: use `skydeck service call`")
-    try:
-        msg = msg_type.model_validate(parse_data(args.data))
-    except ValidationError as error:
-        raise CliError(describe_validation_error(msg_type.__ros_type__, error)) from None
+    msg = message_from(args.data, msg_type)
     topics = {t["name"]: t for t in get_json("/api/graph")["topics"]}
     if name in topics and topics[name]["type"] != msg_type.__ros_type__:
         raise CliError(f"{name} is {topics[name]['type']}, not {msg_type.__ros_type__}")
