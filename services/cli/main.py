@@ -8,7 +8,18 @@ import sys
 
 from pydantic import ValidationError
 
-from services.cli import bag, completion, doctor, interface, node, param, run, service, topic
+from services.cli import (
+    bag,
+    bridge,
+    completion,
+    doctor,
+    interface,
+    node,
+    param,
+    run,
+    service,
+    topic,
+)
 from shared_models.errors import SkydeckError
 
 __all__ = ["build_parser", "main"]
@@ -22,7 +33,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     subparsers = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     run.add_parsers(subparsers)
-    for module in (topic, service, node, param, interface, bag, doctor, completion):
+    for module in (topic, service, node, param, interface, bag, bridge, doctor, completion):
         module.add_parser(subparsers)
     _add_optional(subparsers)
     return parser

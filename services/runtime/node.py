@@ -23,6 +23,7 @@ from services.runtime.parameter import Parameter
 from services.runtime.parameter_service import PARAMETER_EVENTS, parameter_services
 from services.runtime.parameters import NodeParameters
 from services.runtime.participant import Participant
+from services.runtime.protocol import ForeignNode
 from services.runtime.publisher import Publisher
 from services.runtime.ros_args import (
     ROS_ARGS,
@@ -295,6 +296,13 @@ class Node(ParametersMixin):
     def _changed(self) -> None:
         if self._session is not None:
             self._session.mark_changed()
+
+    def set_foreign_participants(self, participants: list[ForeignNode]) -> None:
+        """Say which participants of another system this node bridges to (a ROS 2 bridge's ROS 2
+        nodes): the graph lists them, marked with their system, until this node leaves."""
+        if participants != self._participant.foreign:
+            self._participant.foreign = list(participants)
+            self._changed()
 
     def describe(self):  # type: ignore[no-untyped-def]
         """What this node tells the core about itself (a NodeDescription)."""

@@ -17,7 +17,7 @@ from services.runtime.edge.encoding import Encoding
 from services.runtime.edge.links import PublisherLink
 from services.runtime.endpoint import TopicEndpoint
 from services.runtime.errors import NodeError
-from services.runtime.protocol import Entity, NodeDescription, PublisherAddress
+from services.runtime.protocol import Entity, ForeignNode, NodeDescription, PublisherAddress
 from services.runtime.service import Service
 from services.runtime.settings import ProcessSettings
 from services.runtime.subscription import RawSubscription
@@ -53,6 +53,8 @@ class Participant:
         self.services: dict[str, Service] = {}
         # (topic, publisher URL) -> the link and the task running it
         self.links: dict[tuple[str, str], tuple[PublisherLink, asyncio.Task[None]]] = {}
+        # Other systems' participants it bridges to (a ROS 2 bridge's ROS 2 nodes), for the graph
+        self.foreign: list[ForeignNode] = []
         self._spawn: Spawn | None = None
         self._on_endpoint = on_endpoint
         self._on_service = on_service
@@ -111,6 +113,7 @@ class Participant:
             publications=publications,
             subscriptions=subscriptions,
             services=services,
+            foreign=self.foreign,
         )
 
     def published_counts(self) -> dict[str, int]:

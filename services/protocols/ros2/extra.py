@@ -1,0 +1,60 @@
+"""Whether the bridge's dependencies (the ``ros2`` extra) are here, said in one line each.
+
+Checked without importing rclpy (which is heavy, and inside ``skydeck run`` is Skydeck's own
+façade): from the installed distributions and the interface build's digest.
+"""
+
+from __future__ import annotations
+
+import os
+from importlib.metadata import PackageNotFoundError, version
+
+from services.protocols.ros2.interface_build import packages_to_build, stamp_path
+
+__all__ = ["INSTALL_HINT", "default_domain", "doctor_findings", "missing_extra", "missing_interfaces"]
+
+INSTALL_HINT = "run `make install-ros2` (or `pip install -e '.[ros2]'`, then `python -m services.protocols.ros2.interface_build`)"
+# The distributions without which there is no DDS side at all.
+_NEEDED = ("ros-rclpy", "ros-rmw-fastrtps-cpp", "ros-std-msgs")
+
+
+def missing_extra() -> str | None:
+    """Why the bridge cannot run here (one line), or None when the extra is installed."""
+    missing = []
+    for distribution in _NEEDED:
+        try:
+            version(distribution)
+        except PackageNotFoundError:
+            missing.append(distribution)
+    if missing:
+        return f"the ROS 2 bridge needs ROS 2's Python packages ({', '.join(missing)} not installed): {INSTALL_HINT}"
+    return None
+
+
+def missing_interfaces() -> list[str]:
+    """Skydeck's message packages that have no ROS 2 interface package built yet."""
+    from services.protocols.ros2.interface_build import _digest
+
+    packages = packages_to_build()
+    stamp = stamp_path()
+    if stamp.exists() and stamp.read_text().strip() == _digest(packages):
+        return []
+    return packages
+
+
+def default_domain() -> int:
+    """ROS 2's default: ``ROS_DOMAIN_ID``, else 0."""
+    text = os.environ.get("ROS_DOMAIN_ID", "").strip()
+    return int(text) if text.isdigit() else 0
+
+
+def doctor_findings() -> list[tuple[str, str, str]]:
+    """``skydeck doctor``'s lines about the bridge's set-up: (status, what, fix)."""
+    reason = missing_extra()
+    if reason is not None:
+        return [("warn", "ROS 2 bridge: its extra is not installed (optional)", INSTALL_HINT)]
+    findings = [("ok", f"ROS 2 bridge: rclpy {version('ros-rclpy')} over Fast DDS {version('ros-fastdds')}", "")]
+    missing = missing_interfaces()
+    if missing:
+        findings.append(("warn", f"ROS 2 bridge: interfaces not built for {', '.join(missing)}", INSTALL_HINT))
+    return findings
