@@ -230,8 +230,8 @@ class _Compiler:
                             f"{target} = d[o:o + n]", "o += n"]
         if item.type in _CODES:
             code, size = _CODES[item.type]
-            return lines + ["if n:", *["    " + line for line in _align_read(size)],
-                            f"{target} = list(_unpack('<%d{code}' % n, d, o))", f"o += n * {size}"]
+            return lines + [f"{target} = []", "if n:", *["    " + line for line in _align_read(size)],
+                            f"    {target} = list(_unpack('<%d{code}' % n, d, o))", f"    o += n * {size}"]
         if item.type in ("string", "wstring"):
             return lines + ["a = []", "for _ in range(n):", *["    " + line for line in _decode_string("s")],
                             "    a.append(s)", f"{target} = a"]

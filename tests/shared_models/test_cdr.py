@@ -105,6 +105,8 @@ def test_every_definition_reads_back_as_the_same_specs(name: str) -> None:
     specs = specs_of(cls)
     parsed = parse_definition(name, definition_text(cls))
     assert parsed == specs
+    codec = codec_of(cls)
+    assert cls.model_validate(codec.decode(codec.encode(cls().model_dump()))) == cls()
 
 
 def test_a_definition_from_elsewhere_reads_with_comments_constants_and_ros1_spellings() -> None:

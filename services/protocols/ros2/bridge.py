@@ -50,6 +50,7 @@ class Ros2Bridge(Node):
         self.dds: DdsSide | None = None
         self._topics: TopicBridge | None = None
         self._services: ServiceBridge | None = None
+        self._last_error = ""
         self.create_timer(_SYNC_PERIOD_S, self._sync, wall_clock=True)
 
     async def start(self) -> None:
@@ -74,9 +75,16 @@ class Ros2Bridge(Node):
         if reply.status != 200:
             return
         skydeck: dict[str, Any] = reply.json()
-        ros = self.dds.graph()
-        self._topics.sync(skydeck, ros)
-        self._services.sync(skydeck, ros)
+        try:
+            ros = self.dds.graph()
+            self._topics.sync(skydeck, ros)
+            self._services.sync(skydeck, ros)
+        except Exception as error:  # noqa: BLE001 - one line, and the bridge carries on
+            text = f"{type(error).__name__}: {error}"
+            if text != self._last_error:
+                self._last_error = text
+                logger.warning("skydeck: the ROS 2 bridge could not follow the graph: %s", text)
+            return
         self._update_foreign(ros)
 
     def _update_foreign(self, ros: RosGraph) -> None:

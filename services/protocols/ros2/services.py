@@ -47,16 +47,17 @@ class ServiceBridge:
         self._in: dict[str, Any] = {}  # name -> rclpy client
         self._out: dict[str, Any] = {}  # name -> rclpy service
         self._refused_types: set[str] = set()
+        self._skipped: set[str] = set()  # names whose type cannot cross: not looked at again
 
     def sync(self, skydeck: dict[str, Any], ros: RosGraph) -> None:
         me = self._node.get_name()
         for service in skydeck["services"]:
             name, kind = service["name"], service["type"]
-            if service["node"] == me or name in self._out or name in ros.services or not self._pattern.search(name):
+            if service["node"] == me or name in self._out or name in self._skipped or name in ros.services or not self._pattern.search(name):
                 continue
             self._serve_on_dds(name, kind)
         for name, types in ros.services.items():
-            if name in self._in or name in self._out or not self._pattern.search(name):
+            if name in self._in or name in self._out or name in self._skipped or not self._pattern.search(name):
                 continue
             if any(s["name"] == name for s in skydeck["services"]):
                 continue  # a Skydeck node serves it already
@@ -66,7 +67,8 @@ class ServiceBridge:
         try:
             return service_mappings(kind)
         except NotBridged as error:
-            if kind not in self._refused_types:
+            self._skipped.add(name)
+            if kind not in self._refused_types and not error.quiet:
                 self._refused_types.add(kind)
                 logger.warning("skydeck: not bridging services of type %s (%s, ...): %s", kind, name, error)
             return None

@@ -123,10 +123,14 @@ class TopicBridge:
     def _open_out(self, topic: str, kind: str, latched: bool) -> _Out | None:
         try:
             mapping = message_mapping(kind, ros_type_for(topic, kind))
+            writer = self._dds.node.create_publisher(mapping.ros_cls, topic, publisher_qos(latched))
         except NotBridged as error:
-            self._refuse(topic, str(error))
+            if not error.quiet:
+                self._refuse(topic, str(error))
             return None
-        writer = self._dds.node.create_publisher(mapping.ros_cls, topic, publisher_qos(latched))
+        except Exception as error:  # noqa: BLE001 - rclpy's own refusals (a name it rejects)
+            self._refuse(topic, f"ROS 2 refused it: {error}")
+            return None
         out = self._out[topic] = _Out(topic, mapping, writer)
         logger.info("bridging %s to ROS 2 as %s", topic, mapping.ros_name)
         return out

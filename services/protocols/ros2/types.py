@@ -33,7 +33,12 @@ _CLOCK = "rosgraph_msgs/msg/Clock"
 
 
 class NotBridged(Exception):
-    """A type that cannot cross (one line: the type and why)."""
+    """A type that cannot cross (one line: the type and why); ``quiet`` for Skydeck's own
+    plumbing, which is never meant to cross and needs no warning."""
+
+    def __init__(self, reason: str, *, quiet: bool = False) -> None:
+        super().__init__(reason)
+        self.quiet = quiet
 
 
 @dataclass(frozen=True)
@@ -73,7 +78,7 @@ def message_mapping(skydeck_name: str, ros_name: str) -> MessageMapping:
     :class:`NotBridged` naming the type and the reason."""
     package = skydeck_name.split("/", 1)[0]
     if package in NOT_BRIDGED:
-        raise NotBridged(f"{skydeck_name} is Skydeck's own plumbing, not bridged to ROS 2")
+        raise NotBridged(f"{skydeck_name} is Skydeck's own plumbing, not bridged to ROS 2", quiet=True)
     try:
         skydeck = get_interface(skydeck_name)
     except UnknownInterfaceError:
