@@ -61,6 +61,9 @@ class LaunchOptions:
     # 9090); not shifted by --base-port: they are the ports the tools' users already know.
     rosbridge_port: int | None = None
     foxglove_port: int | None = None
+    # `--ros2`: the ROS 2 bridge (`skydeck run ros2_bridge`) starts with the rest, on the port
+    # after the launch file's last, on ROS_DOMAIN_ID's domain (else 0).
+    ros2: bool = False
 
     def __post_init__(self) -> None:
         if not 1 <= self.base_port <= 65535:
@@ -154,7 +157,7 @@ def plan_launch(spec: LaunchSpec, options: LaunchOptions) -> tuple[NodePlan, ...
             f"does not have; its nodes are: {', '.join(spec.names)}"
         )
     last = options.base_port + max(node.port_offset for node in spec.nodes)
-    if last > 65535:
+    if last + options.ros2 > 65535:
         raise LaunchError(
             f"--base-port {options.base_port} puts the last node on port {last}, past 65535: "
             "choose a lower base port"
@@ -170,6 +173,8 @@ def plan_launch(spec: LaunchSpec, options: LaunchOptions) -> tuple[NodePlan, ...
         if getattr(options, setting) is not None
         for word in (flag, str(getattr(options, setting)))
     )
+    if options.ros2:
+        plans.append(NodePlan(name="ros2_bridge", run="ros2_bridge", port=last + 1))
     return tuple(
         dataclasses.replace(plan, args=(*plan.args, *endpoints)) if plan.is_core and endpoints else plan for plan in plans
     )

@@ -1,13 +1,14 @@
-"""``skydeck bridge ros2``'s entry: check the extra, then run the bridge node until stopped."""
+"""The bridge's entries: ``skydeck bridge ros2`` and ``skydeck run ros2_bridge`` (launch's
+``--ros2``): check the options and the extra, then run the bridge node until stopped."""
 
 from __future__ import annotations
 
+import argparse
 import re
 
-from services.protocols.ros2.extra import default_domain, missing_extra, missing_interfaces
 from shared_models.errors import SkydeckError
 
-__all__ = ["BridgeUnavailable", "run_bridge"]
+__all__ = ["BridgeUnavailable", "add_bridge_arguments", "main", "run_bridge"]
 
 _MAX_DOMAIN = 232  # ROS 2's highest domain id (its UDP ports run out above it)
 
@@ -16,8 +17,26 @@ class BridgeUnavailable(SkydeckError):
     """The bridge cannot start here: its extra is missing, or an option is wrong."""
 
 
+def add_bridge_arguments(parser: argparse.ArgumentParser) -> None:
+    """The bridge's options, the same for both entries."""
+    parser.add_argument("--domain", type=int, default=None, help="the DDS domain id (default: ROS_DOMAIN_ID, else 0)")
+    parser.add_argument("--topics", default=".*", metavar="REGEX", help="bridge only topics whose name matches (default: all)")
+    parser.add_argument("--services", default=".*", metavar="REGEX", help="bridge only services whose name matches (default: all)")
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``skydeck run ros2_bridge [--domain N] [--topics RE] [--services RE]``."""
+    parser = argparse.ArgumentParser(prog="skydeck run ros2_bridge", description="the ROS 2 bridge (see `skydeck bridge ros2`)")
+    add_bridge_arguments(parser)
+    args = parser.parse_args(argv)
+    return run_bridge(args.domain, args.topics, args.services)
+
+
 def run_bridge(domain: int | None, topics: str, services: str) -> int:
     """Run the bridge on ``domain`` (default: ROS_DOMAIN_ID, else 0) until Ctrl-C or SIGTERM."""
+    # Imported here: the CLI loads this module for its options on every command.
+    from services.protocols.ros2.extra import default_domain, missing_extra, missing_interfaces
+
     domain = default_domain() if domain is None else domain
     if not 0 <= domain <= _MAX_DOMAIN:
         raise BridgeUnavailable(f"--domain must be 0 to {_MAX_DOMAIN}, not {domain}")
