@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import base64
 import binascii
+import json
 import struct
 from collections.abc import Callable, Mapping
 from functools import cache
@@ -37,7 +38,7 @@ from shared_models._message import Message
 from shared_models.errors import SkydeckError
 from shared_models.ros2msg import FieldSpec, MessageSpec, specs_of
 
-__all__ = ["ENCAPSULATION", "CdrCodec", "CdrError", "codec_for", "codec_of"]
+__all__ = ["ENCAPSULATION", "CdrCodec", "CdrError", "codec_for", "codec_of", "json_frame", "keeper"]
 
 ENCAPSULATION = b"\x00\x01\x00\x00"  # CDR_LE, no options
 
@@ -273,3 +274,48 @@ def _decode_string(target: str) -> list[str]:
     return [*_align_read(4), "n, = _unpack('<I', d, o)", "o += 4",
             f"{target} = d[o:o + n - 1].decode() if n else ''", "o += n",
             "if o > len(d): raise IndexError('a string runs past the end')"]
+
+
+# -- from a decoded message to a Skydeck frame --------------------------------------------------
+
+
+def _shape(specs: Mapping[str, MessageSpec], name: str) -> Any:
+    """A type's fields, names and kinds, nested types written out (their names apart)."""
+    return tuple(
+        (f.name, f.type if f.is_primitive else _shape(specs, f.type), f.array, f.bounded) for f in specs[name].fields
+    )
+
+
+def keeper(
+    theirs: Mapping[str, MessageSpec], their_name: str, cls: type[Message]
+) -> Callable[[dict[str, Any]], dict[str, Any]] | None:
+    """What keeps, of a message decoded with another definition of ``cls`` (a newer ROS 2's, a
+    recording's), the fields ``cls`` has; None when the two definitions are the same."""
+    ours = specs_of(cls)
+    if _shape(theirs, their_name) == _shape(ours, cls.__ros_type__):
+        return None
+
+    def keep(value: dict[str, Any], type_name: str = cls.__ros_type__) -> dict[str, Any]:
+        out = {}
+        for item in ours[type_name].fields:
+            if item.name not in value:
+                continue
+            field = value[item.name]
+            if not item.is_primitive:
+                field = [keep(v, item.type) for v in field] if item.array is not None else keep(field, item.type)
+            out[item.name] = field
+        return out
+
+    return keep
+
+
+def _json_default(value: Any) -> Any:
+    if isinstance(value, bytes | bytearray):
+        return base64.b64encode(value).decode("ascii")
+    raise TypeError(f"cannot write {type(value).__name__} as JSON")
+
+
+def json_frame(value: Mapping[str, Any]) -> str:
+    """The Skydeck frame (JSON text, byte arrays as base64) of a decoded message; ValueError for
+    NaN or infinity, which Skydeck's messages refuse (JSON cannot carry them)."""
+    return json.dumps(value, default=_json_default, allow_nan=False, separators=(",", ":"))

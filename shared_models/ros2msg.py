@@ -32,6 +32,8 @@ __all__ = [
     "message_spec",
     "msg_file_text",
     "parse_definition",
+    "ros2_type_name",
+    "skydeck_type_name",
     "specs_of",
     "srv_file_text",
 ]
@@ -299,3 +301,21 @@ _BUILTINS = {
     "builtin_interfaces/msg/Time": MessageSpec("builtin_interfaces/msg/Time", _TIME_FIELDS),
     "builtin_interfaces/msg/Duration": MessageSpec("builtin_interfaces/msg/Duration", _TIME_FIELDS),
 }
+
+
+# -- the one type whose name differs -----------------------------------------------------------
+
+_TIME = "builtin_interfaces/msg/Time"
+_CLOCK = "rosgraph_msgs/msg/Clock"
+
+
+def ros2_type_name(topic: str, type_name: str) -> str:
+    """The ROS 2 type of a Skydeck topic: the same name, but ``/clock``'s, which ROS 2 types
+    ``rosgraph_msgs/msg/Clock`` and Skydeck (the seed) ``builtin_interfaces/msg/Time``. A Clock
+    is one Time, so the two have the same CDR: only the name changes."""
+    return _CLOCK if topic == "/clock" and type_name == _TIME else type_name
+
+
+def skydeck_type_name(topic: str, type_name: str) -> str:
+    """The Skydeck type of a ROS 2 topic (the same name, but ``/clock``'s)."""
+    return _TIME if topic == "/clock" and type_name == _CLOCK else type_name

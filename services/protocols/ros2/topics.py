@@ -25,17 +25,11 @@ import re
 from typing import Any
 
 from services.protocols.ros2.dds import DdsSide, RosGraph, publisher_qos, subscription_qos
-from services.protocols.ros2.types import (
-    MessageMapping,
-    NotBridged,
-    frame_text,
-    message_mapping,
-    ros_type_for,
-    skydeck_type_for,
-)
+from services.protocols.ros2.types import MessageMapping, NotBridged, message_mapping
 from services.runtime import Node
 from services.runtime.publisher import Publisher
-from shared_models.cdr import CdrError
+from shared_models.cdr import CdrError, json_frame
+from shared_models.ros2msg import ros2_type_name, skydeck_type_name
 
 __all__ = ["TopicBridge"]
 
@@ -122,7 +116,7 @@ class TopicBridge:
 
     def _open_out(self, topic: str, kind: str, latched: bool) -> _Out | None:
         try:
-            mapping = message_mapping(kind, ros_type_for(topic, kind))
+            mapping = message_mapping(kind, ros2_type_name(topic, kind))
             writer = self._dds.node.create_publisher(mapping.ros_cls, topic, publisher_qos(latched))
         except NotBridged as error:
             if not error.quiet:
@@ -148,7 +142,7 @@ class TopicBridge:
 
     def _open_in(self, topic: str, ros_type: str, writers: list[Any]) -> _In | None:
         try:
-            mapping = message_mapping(skydeck_type_for(topic, ros_type), ros_type)
+            mapping = message_mapping(skydeck_type_name(topic, ros_type), ros_type)
         except NotBridged as error:
             self._refuse(topic, str(error))
             return None
@@ -177,7 +171,7 @@ class TopicBridge:
 
     def _deliver(self, inbound: _In, data: bytes) -> None:
         try:
-            frame = frame_text(inbound.mapping.from_ros(data))
+            frame = json_frame(inbound.mapping.from_ros(data))
         except (CdrError, ValueError) as error:
             if not inbound.warned:
                 inbound.warned = True

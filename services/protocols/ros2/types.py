@@ -12,8 +12,6 @@ lacks (Jazzy's ``Range.variance``), they go out as zeros and are dropped on the 
 
 from __future__ import annotations
 
-import base64
-import json
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cache
@@ -22,14 +20,10 @@ from typing import Any
 from services.protocols.ros2.interface_build import NOT_BRIDGED
 from services.protocols.ros2.rclpy_types import TypeNotAvailable, rclpy_class, rclpy_specs
 from shared_models import Message, ServiceType, UnknownInterfaceError, get_interface
-from shared_models.cdr import CdrCodec, codec_for
-from shared_models.ros2msg import MessageSpec, specs_of
+from shared_models.cdr import CdrCodec, codec_for, codec_of, keeper
+from shared_models.ros2msg import ros2_type_name, skydeck_type_name
 
-__all__ = ["CLOCK_TOPIC", "MessageMapping", "NotBridged", "frame_text", "message_mapping", "ros_type_for", "skydeck_type_for"]
-
-CLOCK_TOPIC = "/clock"
-_TIME = "builtin_interfaces/msg/Time"
-_CLOCK = "rosgraph_msgs/msg/Clock"
+__all__ = ["MessageMapping", "NotBridged", "message_mapping", "ros2_type_name", "service_mappings", "skydeck_type_name"]
 
 
 class NotBridged(Exception):
@@ -62,16 +56,6 @@ class MessageMapping:
         return self.keep(value) if self.keep is not None else value
 
 
-def ros_type_for(topic: str, skydeck_type: str) -> str:
-    """The ROS 2 type of a Skydeck topic (the same name, but ``/clock``'s)."""
-    return _CLOCK if topic == CLOCK_TOPIC and skydeck_type == _TIME else skydeck_type
-
-
-def skydeck_type_for(topic: str, ros_type: str) -> str:
-    """The Skydeck type of a ROS 2 topic (the same name, but ``/clock``'s)."""
-    return _TIME if topic == CLOCK_TOPIC and ros_type == _CLOCK else ros_type
-
-
 @cache
 def message_mapping(skydeck_name: str, ros_name: str) -> MessageMapping:
     """The mapping of a message type (or a service's ``_Request``/``_Response``); raises
@@ -89,14 +73,11 @@ def message_mapping(skydeck_name: str, ros_name: str) -> MessageMapping:
         ros_cls = rclpy_class(ros_name)
     except TypeNotAvailable as error:
         raise NotBridged(f"{skydeck_name} has no ROS 2 counterpart here: {error}") from None
+    if ros_name != skydeck_name:  # /clock's Clock: the same bytes as Time (ros2_type_name)
+        return MessageMapping(skydeck, ros_name, ros_cls, codec_of(skydeck), None)
     ros_specs = rclpy_specs(ros_cls)
-    ours = specs_of(skydeck)
-    if ros_name == _CLOCK and skydeck_name == _TIME:  # the same bytes (see the module docstring)
-        return MessageMapping(skydeck, ros_name, ros_cls, codec_for(_TIME, ours), None)
-    codec = codec_for(next(iter(ros_specs)), ros_specs)
-    same = _shape(ros_specs, next(iter(ros_specs))) == _shape(ours, skydeck_name)
-    keep = None if same else _keeper(ours, skydeck_name)
-    return MessageMapping(skydeck, ros_name, ros_cls, codec, keep)
+    codec = codec_for(ros_name, ros_specs)
+    return MessageMapping(skydeck, ros_name, ros_cls, codec, keeper(ros_specs, ros_name, skydeck))
 
 
 def service_mappings(name: str) -> tuple[type[ServiceType], MessageMapping, MessageMapping]:
@@ -110,38 +91,3 @@ def service_mappings(name: str) -> tuple[type[ServiceType], MessageMapping, Mess
     return service, message_mapping(f"{name}_Request", f"{name}_Request"), message_mapping(
         f"{name}_Response", f"{name}_Response"
     )
-
-
-def _shape(specs: dict[str, MessageSpec], name: str) -> Any:
-    """A type's fields, names and kinds, with nested types written out (their names apart)."""
-    spec = specs[name]
-    return tuple(
-        (f.name, f.type if f.is_primitive else _shape(specs, f.type), f.array, f.bounded) for f in spec.fields
-    )
-
-
-def _keeper(specs: dict[str, MessageSpec], name: str) -> Callable[[dict[str, Any]], dict[str, Any]]:
-    def keep(value: dict[str, Any], type_name: str = name) -> dict[str, Any]:
-        out = {}
-        for item in specs[type_name].fields:
-            if item.name not in value:
-                continue
-            field = value[item.name]
-            if not item.is_primitive:
-                field = [keep(v, item.type) for v in field] if item.array is not None else keep(field, item.type)
-            out[item.name] = field
-        return out
-
-    return keep
-
-
-def _json_default(value: Any) -> Any:
-    if isinstance(value, bytes | bytearray):
-        return base64.b64encode(value).decode("ascii")
-    raise TypeError(f"cannot write {type(value).__name__} as JSON")
-
-
-def frame_text(value: dict[str, Any]) -> str:
-    """A Skydeck frame (JSON text) of a decoded message; raises ValueError for NaN or infinity,
-    which Skydeck's messages refuse."""
-    return json.dumps(value, default=_json_default, allow_nan=False, separators=(",", ":"))

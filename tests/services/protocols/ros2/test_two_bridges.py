@@ -81,6 +81,8 @@ def test_bad_options_are_one_line(capsys: pytest.CaptureFixture[str]) -> None:
 
     assert main(["bridge", "ros2", "--domain", "233"]) == 1
     assert main(["bridge", "ros2", "--topics", "(unclosed"]) == 1
+    assert main(["bridge", "ros2", "--services", "*"]) == 1
     lines = capsys.readouterr().err.strip().splitlines()
     assert lines[0] == "skydeck: error: --domain must be 0 to 232, not 233"
     assert lines[1].startswith("skydeck: error: --topics '(unclosed' is not a regular expression: ")
+    assert lines[2].startswith("skydeck: error: --services '*' is not a regular expression: ")

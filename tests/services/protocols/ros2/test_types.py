@@ -150,10 +150,10 @@ def test_types_that_differ_are_mapped_by_field_name(real_ros: None) -> None:
 def test_clock_is_time_on_the_wire(real_ros: None) -> None:
     from rclpy.serialization import serialize_message
 
-    from services.protocols.ros2.types import message_mapping, ros_type_for
+    from services.protocols.ros2.types import message_mapping, ros2_type_name
 
-    assert ros_type_for("/clock", "builtin_interfaces/msg/Time") == "rosgraph_msgs/msg/Clock"
-    assert ros_type_for("/stamp", "builtin_interfaces/msg/Time") == "builtin_interfaces/msg/Time"
+    assert ros2_type_name("/clock", "builtin_interfaces/msg/Time") == "rosgraph_msgs/msg/Clock"
+    assert ros2_type_name("/stamp", "builtin_interfaces/msg/Time") == "builtin_interfaces/msg/Time"
     mapping = message_mapping("builtin_interfaces/msg/Time", "rosgraph_msgs/msg/Clock")
     clock = importlib.import_module("rosgraph_msgs.msg").Clock()
     clock.clock.sec, clock.clock.nanosec = 12, 500
