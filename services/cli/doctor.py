@@ -46,7 +46,7 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
 
 
 def _doctor(args: argparse.Namespace) -> int:
-    checks: list[Callable[[], list[Check]]] = [_python, _venv, _packages, _core_and_clock, _ports, _browser]
+    checks: list[Callable[[], list[Check]]] = [_python, _venv, _packages, _core_and_clock, _ports, _browser, _ros2]
     failed = 0
     for check in checks:
         for finding in check():
@@ -159,3 +159,16 @@ def _browser() -> list[Check]:
     if (_REPO / "web_ui").is_dir() and not swagger.is_dir():
         found.append(Check("warn", "Swagger UI missing: /docs has no page", "run `make install` (npm ci in web_ui/vendor)"))
     return found
+
+
+def _ros2() -> list[Check]:
+    """The ROS 2 bridge's extra, and the domain a running bridge joined (its module says)."""
+    import httpx
+
+    from services.protocols.ros2.extra import doctor_findings
+
+    try:
+        graph = httpx.get(core_url() + "/api/graph", headers=auth_headers(), timeout=3.0).json()
+    except (httpx.HTTPError, ValueError):
+        graph = None
+    return [Check(*finding) for finding in doctor_findings(graph)]

@@ -7,7 +7,9 @@ façade): from the installed distributions and the interface build's digest.
 from __future__ import annotations
 
 import os
+import re
 from importlib.metadata import PackageNotFoundError, version
+from typing import Any
 
 from services.protocols.ros2.interface_build import packages_to_build, stamp_path
 
@@ -48,13 +50,24 @@ def default_domain() -> int:
     return int(text) if text.isdigit() else 0
 
 
-def doctor_findings() -> list[tuple[str, str, str]]:
-    """``skydeck doctor``'s lines about the bridge's set-up: (status, what, fix)."""
-    reason = missing_extra()
-    if reason is not None:
-        return [("warn", "ROS 2 bridge: its extra is not installed (optional)", INSTALL_HINT)]
-    findings = [("ok", f"ROS 2 bridge: rclpy {version('ros-rclpy')} over Fast DDS {version('ros-fastdds')}", "")]
-    missing = missing_interfaces()
-    if missing:
-        findings.append(("warn", f"ROS 2 bridge: interfaces not built for {', '.join(missing)}", INSTALL_HINT))
+def doctor_findings(graph: dict[str, Any] | None) -> list[tuple[str, str, str]]:
+    """``skydeck doctor``'s lines about the bridge: (status, what, fix). ``graph`` is the core's
+    ``/api/graph`` (None without a core): a running bridge says which domain it joined."""
+    findings = []
+    if missing_extra() is not None:
+        findings.append(("warn", "ROS 2 bridge: its extra is not installed (optional)", INSTALL_HINT))
+    else:
+        findings.append(("ok", f"ROS 2 bridge: rclpy {version('ros-rclpy')} over Fast DDS {version('ros-fastdds')}", ""))
+        missing = missing_interfaces()
+        if missing:
+            findings.append(("warn", f"ROS 2 bridge: interfaces not built for {', '.join(missing)}", INSTALL_HINT))
+    for node in (graph or {}).get("nodes", []):
+        match = _BRIDGE.fullmatch(node["name"])
+        if match is not None:
+            ros2_nodes = sum(1 for n in graph["nodes"] if n.get("via") == node["name"])  # type: ignore[index]
+            findings.append(("ok", f"ROS 2 bridge {node['name']} joined DDS domain {match['domain'] or 0} ({ros2_nodes} ROS 2 node(s) seen)", ""))
     return findings
+
+
+# The bridge's node name says its domain (bridge.bridge_node_name).
+_BRIDGE = re.compile(r"/ros2_bridge(?:_(?P<domain>\d+))?")

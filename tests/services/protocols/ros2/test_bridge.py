@@ -39,6 +39,8 @@ def test_an_unmodified_rclpy_talker_is_seen_by_topic_echo_and_listed_as_ros2(rob
         assert "/chatter [std_msgs/msg/String]" in types
         graph = robot.skydeck("node", "info", "/talker").stdout
         assert "/chatter [std_msgs/msg/String]" in graph
+        doctor = robot.skydeck("doctor").stdout
+        assert f"[ok] ROS 2 bridge /ros2_bridge_{robot.domain} joined DDS domain {robot.domain}" in doctor
     finally:
         talker.stop()
 
