@@ -1,9 +1,15 @@
 """The bridge's DDS side: one real rclpy node on its own context and executor thread.
 
-rclpy's executor runs callbacks on its threads; everything the bridge does with a message
+rclpy's executors run callbacks on their threads; everything the bridge does with a message
 happens on Skydeck's event loop, so each callback hands its bytes over with
 ``call_soon_threadsafe`` and returns. Publishing (``publish(bytes)``) and rclpy's graph queries
 are safe from the loop's thread.
+
+Two rclpy nodes share the one participant (context): ``node`` carries the topics on a
+single-threaded executor (a message's way through it is shortest there: a multi-threaded
+executor's hand-over to its pool cost the bridge half its inbound rate and doubled its latency),
+``service_node`` the services on a multi-threaded one, where a call may block a thread while
+Skydeck answers it.
 
 The participant's GUID prefix (the first 12 bytes of every endpoint's gid) tells the bridge's
 own DDS writers from others: a message the bridge itself sent out is never taken back in.
@@ -20,13 +26,13 @@ from typing import Any
 import rclpy
 from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.context import Context
-from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
+from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor, SingleThreadedExecutor
 from rclpy.node import Node as RclpyNode
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
 __all__ = ["DdsSide", "Endpoint", "RosGraph", "publisher_qos", "subscription_qos"]
 
-_EXECUTOR_THREADS = 4  # service calls block a thread each while Skydeck answers
+_SERVICE_THREADS = 4  # service calls block a thread each while Skydeck answers
 
 
 def publisher_qos(latched: bool) -> QoSProfile:
@@ -86,29 +92,40 @@ class DdsSide:
         self.context = Context()
         rclpy.init(context=self.context, domain_id=domain, args=[])
         self.node = RclpyNode(name, context=self.context, start_parameter_services=False)
+        self.service_node = RclpyNode(f"{name}_services", context=self.context, start_parameter_services=False)
         self.name = self.node.get_fully_qualified_name()
-        self.group = ReentrantCallbackGroup()
-        self._executor = MultiThreadedExecutor(num_threads=_EXECUTOR_THREADS, context=self.context)
-        self._executor.add_node(self.node)
-        self._thread = threading.Thread(target=self._spin, name="ros2-executor", daemon=True)
+        self.own_nodes = {self.name, self.service_node.get_fully_qualified_name()}
+        self.group = ReentrantCallbackGroup()  # the services'
+        self._executors = [SingleThreadedExecutor(context=self.context), MultiThreadedExecutor(num_threads=_SERVICE_THREADS, context=self.context)]
+        self._executors[0].add_node(self.node)
+        self._executors[1].add_node(self.service_node)
+        self._threads = [
+            threading.Thread(target=self._spin, args=(executor,), name=f"ros2-{kind}", daemon=True)
+            for executor, kind in zip(self._executors, ("topics", "services"), strict=True)
+        ]
         self._prefix: bytes | None = None
 
     def start(self) -> None:
         # Every rclpy node writes /rosout: its gid gives the participant's prefix at once.
         for info in self.node.get_publishers_info_by_topic("/rosout"):
             self._endpoint(info)
-        self._thread.start()
+        for thread in self._threads:
+            thread.start()
 
-    def _spin(self) -> None:
+    @staticmethod
+    def _spin(executor: Any) -> None:
         with contextlib.suppress(ExternalShutdownException):
-            self._executor.spin()
+            executor.spin()
 
     def stop(self) -> None:
-        self._executor.shutdown(timeout_sec=1.0)
+        for executor in self._executors:
+            executor.shutdown(timeout_sec=1.0)
         self.node.destroy_node()
+        self.service_node.destroy_node()
         if self.context.ok():
             rclpy.shutdown(context=self.context)
-        self._thread.join(timeout=2.0)
+        for thread in self._threads:
+            thread.join(timeout=2.0)
 
     # -- own writers ------------------------------------------------------------------------------
 
@@ -131,13 +148,17 @@ class DdsSide:
             graph.topics[topic] = types
             graph.publishers[topic] = [w for w in writers if not w.ours]
             graph.subscribers[topic] = [r for r in readers if not r.ours]
-        own_services = {name for name, _ in node.get_service_names_and_types_by_node(node.get_name(), node.get_namespace())}
+        own_services = {
+            name for name, _ in self.service_node.get_service_names_and_types_by_node(
+                self.service_node.get_name(), self.service_node.get_namespace()
+            )
+        }
         for service, types in node.get_service_names_and_types():
             if service not in own_services:
                 graph.services[service] = types
         for name, namespace in node.get_node_names_and_namespaces():
             full = (namespace.rstrip("/") + "/" + name) if namespace else "/" + name
-            if full == self.name:
+            if full in self.own_nodes:
                 continue
             try:
                 graph.nodes[full] = (
@@ -151,7 +172,7 @@ class DdsSide:
 
     def _endpoint(self, info: Any) -> Endpoint:
         full = (info.node_namespace.rstrip("/") + "/" + info.node_name) if info.node_namespace else "/" + info.node_name
-        ours = full == self.name
+        ours = full in self.own_nodes
         if ours:
             self._learn_prefix(list(info.endpoint_gid))
         qos = info.qos_profile

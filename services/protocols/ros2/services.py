@@ -81,7 +81,7 @@ class ServiceBridge:
             return
         service_type, request_map, response_map = mappings
         ros_service = _ros_service_class(request_map)
-        client = self._dds.node.create_client(ros_service, name, callback_group=self._dds.group)
+        client = self._dds.service_node.create_client(ros_service, name, callback_group=self._dds.group)
         self._in[name] = client
 
         async def handle(request: Message) -> Message:
@@ -118,7 +118,7 @@ class ServiceBridge:
                 logger.warning("a ROS 2 call of %s was not answered by Skydeck: %s", name, error)
                 return ros_response
 
-        self._out[name] = self._dds.node.create_service(
+        self._out[name] = self._dds.service_node.create_service(
             _ros_service_class(request_map), name, answer, callback_group=self._dds.group
         )
         logger.info("bridging service %s to ROS 2 (%s)", name, kind)

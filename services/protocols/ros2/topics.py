@@ -165,9 +165,7 @@ class TopicBridge:
             if not dds.is_own(gid):
                 loop.call_soon_threadsafe(self._deliver, inbound, data)
 
-        inbound.reader = dds.node.create_subscription(
-            inbound.mapping.ros_cls, inbound.topic, received, qos, raw=True, callback_group=dds.group
-        )
+        inbound.reader = dds.node.create_subscription(inbound.mapping.ros_cls, inbound.topic, received, qos, raw=True)
 
     def _deliver(self, inbound: _In, data: bytes) -> None:
         try:
