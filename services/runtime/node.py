@@ -10,11 +10,12 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import Callable, Coroutine
-from typing import Any, TypeVar
+from typing import Any, Literal, TypeVar
 
 from services.runtime.app import NodeApp
 from services.runtime.client import Client
 from services.runtime.clock import Clock
+from services.runtime.edge.encoding import Encoding
 from services.runtime.errors import NodeError
 from services.runtime.http_client import HttpClient
 from services.runtime.logger import NodeLogger
@@ -229,16 +230,20 @@ class Node(ParametersMixin):
         qos_profile: int = 10,
         *,
         raw: bool = False,
+        raw_encoding: Literal["json", "msgpack"] = "json",
     ) -> Subscription | RawSubscription:
         """Call ``callback(msg)`` for every message on ``topic``; ``qos_profile`` is the queue depth.
 
         ``raw=True`` (as rclpy's): ``callback(frame)`` gets each message's JSON text as received,
         unparsed; it runs where the frame arrives, so it must be quick (a recorder's write).
+        ``raw_encoding="msgpack"`` gets the msgpack bytes links carry instead (byte arrays as
+        bytes, not base64: the ROS 2 bridge's way to a camera's images).
         """
         self._check_alive()
         endpoint = self._participant.endpoint(msg_type, self._names.resolve(topic))
         if raw:
-            tap = RawSubscription(endpoint.name, msg_type, callback, _depth(qos_profile))  # type: ignore[arg-type]
+            encoding = Encoding.MSGPACK if raw_encoding == "msgpack" else Encoding.JSON
+            tap = RawSubscription(endpoint.name, msg_type, callback, _depth(qos_profile), encoding)  # type: ignore[arg-type]
             endpoint.taps.add(tap)
             self._changed()
             return tap

@@ -142,7 +142,7 @@ class Participant:
         # Nodes link in msgpack; a topic read here only raw (a recorder) links in JSON, so its
         # frames come as the publisher serialised them, never converted here.
         raw_only = bool(endpoint.taps) and not endpoint.subscriptions and all(
-            isinstance(tap, RawSubscription) for tap in endpoint.taps
+            isinstance(tap, RawSubscription) and tap.encoding is Encoding.JSON for tap in endpoint.taps
         )
         encoding = Encoding.JSON if raw_only else Encoding.MSGPACK
         for url in wanted:
