@@ -226,7 +226,7 @@ class Node(ParametersMixin):
         self,
         msg_type: type[M],
         topic: str,
-        callback: Callable[[M], Any] | Callable[[str], Any],
+        callback: Callable[[M], Any] | Callable[[str], Any] | Callable[[bytes], Any],
         qos_profile: int = 10,
         *,
         raw: bool = False,

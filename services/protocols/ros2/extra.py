@@ -64,7 +64,7 @@ def doctor_findings(graph: dict[str, Any] | None) -> list[tuple[str, str, str]]:
     for node in (graph or {}).get("nodes", []):
         match = _BRIDGE.fullmatch(node["name"])
         if match is not None:
-            ros2_nodes = sum(1 for n in graph["nodes"] if n.get("via") == node["name"])  # type: ignore[index]
+            ros2_nodes = sum(1 for n in (graph or {})["nodes"] if n.get("via") == node["name"])
             findings.append(("ok", f"ROS 2 bridge {node['name']} joined DDS domain {match['domain'] or 0} ({ros2_nodes} ROS 2 node(s) seen)", ""))
     return findings
 

@@ -25,7 +25,7 @@ from rclpy.serialization import deserialize_message, serialize_message
 
 from services.protocols.ros2.dds import DdsSide, RosGraph
 from services.protocols.ros2.types import MessageMapping, NotBridged, service_mappings
-from services.runtime import Node, ServiceError
+from services.runtime import Node, ServiceError, ServiceTimeoutError
 from shared_models import Message, ServiceType
 from shared_models.cdr import CdrError
 
@@ -81,19 +81,21 @@ class ServiceBridge:
             return
         service_type, request_map, response_map = mappings
         ros_service = _ros_service_class(request_map)
-        client = self._dds.service_node.create_client(ros_service, name, callback_group=self._dds.group)
+        client: Any = self._dds.service_node.create_client(ros_service, name, callback_group=self._dds.group)
         self._in[name] = client
 
         async def handle(request: Message) -> Message:
             ros_request = deserialize_message(request_map.to_ros(request.model_dump()), request_map.ros_cls)
             future = client.call_async(ros_request)
             done: asyncio.Future[Any] = self._loop.create_future()
-            future.add_done_callback(lambda f: self._loop.call_soon_threadsafe(_settle, done, f))
+            future.add_done_callback(lambda f: _hand_over(self._loop, done, f))
             try:
                 async with asyncio.timeout(_CALL_TIMEOUT_S):
                     ros_response = await done
             except TimeoutError:
-                raise ServiceError(f"the ROS 2 server of {name} did not answer within {_CALL_TIMEOUT_S:g} s") from None
+                raise ServiceTimeoutError(
+                    name, f"the ROS 2 server of {name} did not answer within {_CALL_TIMEOUT_S:g} s"
+                ) from None
             return service_type.Response.model_validate(response_map.from_ros(serialize_message(ros_response)))
 
         self._node.create_service(service_type, name, handle)
@@ -131,6 +133,11 @@ def _ros_service_class(request_map: MessageMapping) -> Any:
     request_cls = request_map.ros_cls
     module = importlib.import_module(request_cls.__module__.rsplit(".", 1)[0])
     return getattr(module, request_cls.__name__.removesuffix("_Request"))
+
+
+def _hand_over(loop: asyncio.AbstractEventLoop, done: asyncio.Future[Any], future: Any) -> None:
+    """From rclpy's executor thread to the loop's (rclpy runs the callback on its thread)."""
+    loop.call_soon_threadsafe(_settle, done, future)
 
 
 def _settle(done: asyncio.Future[Any], future: Any) -> None:
