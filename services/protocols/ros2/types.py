@@ -56,6 +56,17 @@ class MessageMapping:
         return self.keep(value) if self.keep is not None else value
 
 
+def _skydeck_type(name: str, kind: type[Any], *, shown_as: str = "") -> Any:
+    """Skydeck's class of ``name``, of ``kind`` (a message or a service); NotBridged if none."""
+    try:
+        found = get_interface(name)
+    except UnknownInterfaceError:
+        raise NotBridged(f"{shown_as or name} has no Skydeck counterpart (see `skydeck interface list`)") from None
+    if not (isinstance(found, type) and issubclass(found, kind)):
+        raise NotBridged(f"{name} is not a {'service' if kind is ServiceType else 'message'} type")
+    return found
+
+
 @cache
 def message_mapping(skydeck_name: str, ros_name: str) -> MessageMapping:
     """The mapping of a message type (or a service's ``_Request``/``_Response``); raises
@@ -63,12 +74,7 @@ def message_mapping(skydeck_name: str, ros_name: str) -> MessageMapping:
     package = skydeck_name.split("/", 1)[0]
     if package in NOT_BRIDGED:
         raise NotBridged(f"{skydeck_name} is Skydeck's own plumbing, not bridged to ROS 2", quiet=True)
-    try:
-        skydeck = get_interface(skydeck_name)
-    except UnknownInterfaceError:
-        raise NotBridged(f"{ros_name} has no Skydeck counterpart (see `skydeck interface list`)") from None
-    if not (isinstance(skydeck, type) and issubclass(skydeck, Message)):
-        raise NotBridged(f"{skydeck_name} is not a message type")
+    skydeck = _skydeck_type(skydeck_name, Message, shown_as=ros_name)
     try:
         ros_cls = rclpy_class(ros_name)
     except TypeNotAvailable as error:
@@ -82,12 +88,7 @@ def message_mapping(skydeck_name: str, ros_name: str) -> MessageMapping:
 
 def service_mappings(name: str) -> tuple[type[ServiceType], MessageMapping, MessageMapping]:
     """A service type's class and the mappings of its request and response."""
-    try:
-        service = get_interface(name)
-    except UnknownInterfaceError:
-        raise NotBridged(f"{name} has no Skydeck counterpart (see `skydeck interface list --srv`)") from None
-    if not (isinstance(service, type) and issubclass(service, ServiceType)):
-        raise NotBridged(f"{name} is not a service type")
+    service = _skydeck_type(name, ServiceType)
     return service, message_mapping(f"{name}_Request", f"{name}_Request"), message_mapping(
         f"{name}_Response", f"{name}_Response"
     )

@@ -177,21 +177,15 @@ async def test_a_recording_from_ros2_plays_into_skydeck(core, start_node, tmp_pa
 
 
 async def test_bag_record_encoding_cdr_writes_what_ros2_reads(core, start_node, tmp_path: Path) -> None:
+    from tests.conftest import wait_until
     from tests.services.bag.test_record_play import Talker
-    from tests.services.cli.test_bag_cli import recorder
+    from tests.services.cli.test_bag_cli import linked_recorder, recorded
 
     talker = await start_node(Talker)
-    process = recorder(core.url, "/points", "--encoding", "cdr", "-o", str(tmp_path / "ros2"))
+    process = await linked_recorder(core.url, talker, "/points", "--encoding", "cdr", "-o", str(tmp_path / "ros2"))
     try:
-        await process.await_line("subscribed to /points", 30)
-        async with asyncio.timeout(20):
-            while talker.publisher.get_subscription_count() < 1:
-                await asyncio.sleep(0.02)
         talker.send(20)
-        await asyncio.sleep(0)  # the frames leave in this turn of the loop
-        async with asyncio.timeout(20):
-            while _decoded_points(tmp_path / "ros2.mcap") < 20:
-                await asyncio.sleep(0.1)
+        await wait_until(lambda: recorded(tmp_path / "ros2.mcap", "/points") == 20, timeout_s=20, what="20 on disk")
     finally:
         await asyncio.to_thread(process.stop, signal.SIGINT, 20)
     with (tmp_path / "ros2.mcap").open("rb") as stream:
@@ -200,11 +194,3 @@ async def test_bag_record_encoding_cdr_writes_what_ros2_reads(core, start_node, 
         xs = [message.point.x for _, _, _, message in reader.iter_decoded_messages()]
     assert xs == [float(i) for i in range(20)]
 
-
-def _decoded_points(path: Path) -> int:
-    """Messages a reader finds in the file so far (a recorder still writing, chunk by chunk)."""
-    try:
-        with BagReader(path) as bag:
-            return sum(1 for _ in bag.messages())
-    except Exception:  # noqa: BLE001 - not written yet
-        return 0
