@@ -5,7 +5,7 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 ROS2_STAMP := $(VENV)/.installed-ros2
 
-.PHONY: install install-ros2 up robot test test-deps lint bench clean
+.PHONY: install install-ros2 install-vision up robot test test-deps lint bench clean
 
 install: $(STAMP)
 
@@ -28,6 +28,14 @@ $(ROS2_STAMP): $(STAMP) requirements-ros2.lock $(wildcard shared_models/*.py) se
 	$(BIN)/python -m services.protocols.ros2.interface_build
 	touch $(ROS2_STAMP)
 
+# The vision extra (cv_bridge over OpenCV), apart from the default install as DESIGN.md asks;
+# requirements-vision.lock is pyproject.toml's `vision` extra pinned to requirements.lock.
+install-vision: $(VENV)/.vision-installed
+
+$(VENV)/.vision-installed: $(STAMP) requirements-vision.lock
+	$(BIN)/python -m pip install --quiet --require-hashes --no-deps -r requirements-vision.lock
+	touch $@
+
 up: install
 	$(BIN)/skydeck launch
 
@@ -43,7 +51,7 @@ test-deps:
 		command -v cmake >/dev/null && command -v g++ >/dev/null && command -v ip >/dev/null || \
 		{ apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium docker-compose zsh cmake g++ make iproute2 >/dev/null; }
 
-test: install test-deps install-ros2
+test: install install-vision test-deps install-ros2
 	docker-compose -f docker-compose.yml config --quiet
 	docker-compose -f docker-compose.yml -f docker-compose.robot.yml config --quiet
 	$(BIN)/python -m pytest -q
