@@ -7,7 +7,9 @@ places, and the CDR codec (:mod:`shared_models.cdr`) works from any of them:
 - a Skydeck model (:func:`message_spec`): its ROS 2 view, without the fields ROS 2's type does
   not have (``Header.seq``, kept from ROS 1, marked :class:`~shared_models._message.Ros1Only`);
 - the text of a ``.msg`` file or of an MCAP ``ros2msg`` schema (:func:`parse_definition`): the
-  type's own definition, then each type it uses after a line of ``=`` and ``MSG: pkg/Name``;
+  type's own definition, then each type it uses after a line of ``=`` and ``MSG: pkg/Name``
+  (read into specs for the codec, never into classes: :mod:`shared_models.definitions` makes
+  Skydeck's types from definition files; this reads a recording's, whatever Skydeck holds);
 - a definition written out by :func:`definition_text` (what ``skydeck bag record --encoding cdr``
   puts in its schemas) or :func:`msg_file_text` (the ``.msg`` file the ROS 2 interface build
   compiles).
@@ -20,12 +22,11 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 
 from shared_models._message import Message, Ros1Only, ServiceType
-from shared_models.errors import SkydeckError
+from shared_models.definitions.errors import DefinitionError
 from shared_models.interfaces import field_types
 
 __all__ = [
     "PRIMITIVES",
-    "DefinitionError",
     "FieldSpec",
     "MessageSpec",
     "definition_text",
@@ -49,10 +50,6 @@ _ALIASES = {"time": "builtin_interfaces/msg/Time", "duration": "builtin_interfac
 _SEPARATOR = "=" * 80
 
 
-class DefinitionError(SkydeckError, ValueError):
-    """A message definition that cannot be read (a bad line, a type it uses but does not define)."""
-
-
 @dataclass(frozen=True)
 class FieldSpec:
     """One field: ``type`` is a primitive (``float64``) or a message (``geometry_msgs/msg/Point``);
@@ -71,11 +68,7 @@ class FieldSpec:
     def type_text(self, package: str) -> str:
         """The field's type as a ``.msg`` file spells it (``Point``, ``builtin_interfaces/Time``,
         ``float64[36]``, ``FloatingPointRange[<=1]``)."""
-        if self.is_primitive:
-            text = self.type
-        else:
-            type_package, _, short = self.type.partition("/msg/")
-            text = short if type_package == package else f"{type_package}/{short}"
+        text = self.type if self.is_primitive else _reference(self.type, package)
         if self.array is None:
             return text
         if self.array < 0:
@@ -111,7 +104,7 @@ def message_spec(cls: type[Message]) -> MessageSpec:
             continue
         match = _FIELD_TYPE.match(text)
         if match is None:  # field_types only writes what the pattern reads
-            raise DefinitionError(f"{cls.__ros_type__}.{name}: unreadable type {text!r}")
+            raise DefinitionError(cls.__ros_type__, None, f"{name}: unreadable type {text!r}")
         base = nested.__ros_type__ if nested is not None else _full_type(match["base"], package)
         array = None if match["size"] is None else int(match["size"]) if match["size"] else -1
         # byte[]/uint8[] are one primitive alias in Skydeck ("uint8[]"): the same here
@@ -156,6 +149,15 @@ def specs_of(cls: type[Message]) -> dict[str, MessageSpec]:
 # -- writing definitions ----------------------------------------------------------------------
 
 
+def _reference(type_name: str, package: str) -> str:
+    """How a definition names a message type: ``Point`` within its package, ``pkg/Name`` across
+    packages, and ``pkg/action/Name`` for an action's parts (which are no ``msg``)."""
+    type_package, kind, short = type_name.split("/")
+    if kind != "msg":
+        return type_name
+    return short if type_package == package else f"{type_package}/{short}"
+
+
 def _spec_lines(spec: MessageSpec) -> list[str]:
     lines = [f"{kind} {name}={value}" for kind, name, value in spec.constants]
     for item in spec.fields:
@@ -182,8 +184,7 @@ def definition_text(cls: type[Message]) -> str:
     specs = list(specs_of(cls).values())
     parts = ["\n".join(_spec_lines(specs[0]))]
     for spec in specs[1:]:
-        package, _, short = spec.name.partition("/msg/")
-        parts.append(f"{_SEPARATOR}\nMSG: {package}/{short}\n" + "\n".join(_spec_lines(spec)))
+        parts.append(f"{_SEPARATOR}\nMSG: {_reference(spec.name, '')}\n" + "\n".join(_spec_lines(spec)))
     return "\n".join(parts) + "\n"
 
 
@@ -229,7 +230,7 @@ def _parse_section(name: str, lines: list[str]) -> MessageSpec:
         if match is None:
             constant = re.match(r"^(\w+)\s+(\w+)\s*=\s*(.*)$", line)
             if constant is None:
-                raise DefinitionError(f"{name}: line {number}: cannot read {raw.strip()!r}")
+                raise DefinitionError(name, number, f"cannot read {raw.strip()!r}")
             constants.append((constant[1], constant[2], constant[3].strip()))
             continue
         rest = match["rest"].strip()
@@ -256,7 +257,7 @@ def _strip_comment(line: str) -> str:
 def _field(owner: str, package: str, text: str, name: str, default: str) -> FieldSpec:
     match = _FIELD_TYPE.match(text)
     if match is None:
-        raise DefinitionError(f"{owner}: cannot read the type {text!r} of {name}")
+        raise DefinitionError(owner, None, f"cannot read the type {text!r} of {name}")
     base = re.sub(r"<=\d+$", "", match["base"])  # string<=10: a bound ROS 2 keeps, CDR does not
     array = None if match["size"] is None else int(match["size"]) if match["size"] else -1
     return FieldSpec(name, _full_type(base, package), array, bool(match["bound"]), default)
@@ -272,6 +273,8 @@ def _full_type(base: str, package: str) -> str:
     parts = base.split("/")
     if len(parts) == 1:
         return f"{package}/msg/{base}"
+    if len(parts) == 3:  # pkg/action/Name: an action's part, named whole
+        return base
     return f"{parts[0]}/msg/{parts[-1]}"
 
 
@@ -290,8 +293,7 @@ def _check_resolved(name: str, specs: dict[str, MessageSpec]) -> None:
             builtin = _BUILTINS.get(item.type)
             if builtin is None:
                 raise DefinitionError(
-                    f"{name}: {spec.name}.{item.name} is of type {item.type}, which the definition "
-                    f"does not include"
+                    name, None, f"{spec.name}.{item.name} is of type {item.type}, which the definition does not include"
                 )
             specs[item.type] = builtin
 

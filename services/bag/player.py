@@ -24,9 +24,9 @@ from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from services.bag.cdr import CDR_ENCODING
 from services.bag.errors import BagError
 from services.bag.reader import BagMessage, BagReader
-from services.bag.cdr import CDR_ENCODING
 from services.bag.schemas import MESSAGE_ENCODING, message_type
 from services.runtime.node import Node
 from services.runtime.publisher import Publisher

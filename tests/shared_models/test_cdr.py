@@ -12,8 +12,8 @@ from hypothesis import strategies as st
 from shared_models import all_interfaces, get_interface
 from shared_models._message import Message
 from shared_models.cdr import CdrError, codec_for, codec_of
+from shared_models.definitions.errors import DefinitionError
 from shared_models.ros2msg import (
-    DefinitionError,
     definition_text,
     message_spec,
     msg_file_text,
@@ -133,7 +133,7 @@ def test_a_definition_from_elsewhere_reads_with_comments_constants_and_ros1_spel
         "values": [1.5], "name": "n", "details": [{"at": {"sec": 0, "nanosec": 0}, "raw": b"\x01"}] * 2,
     }
     assert codec.decode(codec.encode(value)) == value
-    with pytest.raises(DefinitionError, match="line 1: cannot read 'float64'"):
+    with pytest.raises(DefinitionError, match="demo_msgs/msg/Bad:1: cannot read 'float64'"):
         parse_definition("demo_msgs/Bad", "float64\n")
 
 

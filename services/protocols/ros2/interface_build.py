@@ -28,6 +28,7 @@ from pathlib import Path
 
 from shared_models import Message, ServiceType, all_interfaces
 from shared_models.catalogue import MESSAGE_PACKAGES
+from shared_models.errors import SkydeckError
 from shared_models.ros2msg import msg_file_text, specs_of, srv_file_text
 
 __all__ = ["NOT_BRIDGED", "BuildFailed", "build_interfaces", "packages_to_build", "stamp_path"]
@@ -75,7 +76,7 @@ _PACKAGE_XML = """<?xml version="1.0"?>
 """
 
 
-class BuildFailed(Exception):
+class BuildFailed(SkydeckError):
     """A package did not build; the message names it and where cmake's output is."""
 
 
@@ -106,9 +107,12 @@ def _has_wheel(package: str) -> bool:
 
 
 def _types_of(package: str) -> list[type[Message] | type[ServiceType]]:
+    """The package's messages and services (a service's halves are its own; actions are not
+    bridged)."""
     return [
         cls for name, cls in sorted(all_interfaces().items())
         if name.startswith(package + "/") and not name.endswith(("_Request", "_Response"))
+        and isinstance(cls, type) and issubclass(cls, Message | ServiceType)
     ]
 
 

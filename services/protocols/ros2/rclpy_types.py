@@ -12,6 +12,7 @@ import importlib
 import re
 from typing import Any
 
+from shared_models.errors import SkydeckError
 from shared_models.ros2msg import FieldSpec, MessageSpec
 
 __all__ = ["TypeNotAvailable", "rclpy_class", "rclpy_specs"]
@@ -26,7 +27,7 @@ _SEQUENCE = re.compile(r"^sequence<(?P<item>[^,>]+)(?:,\s*(?P<bound>\d+))?>$")
 _ARRAY = re.compile(r"^(?P<item>.+)\[(?P<size>\d+)\]$")
 
 
-class TypeNotAvailable(LookupError):
+class TypeNotAvailable(SkydeckError, LookupError):
     """No ROS 2 package installed here defines the type (its message names why)."""
 
 

@@ -21,12 +21,13 @@ from services.protocols.ros2.interface_build import NOT_BRIDGED
 from services.protocols.ros2.rclpy_types import TypeNotAvailable, rclpy_class, rclpy_specs
 from shared_models import Message, ServiceType, UnknownInterfaceError, get_interface
 from shared_models.cdr import CdrCodec, codec_for, codec_of, keeper
+from shared_models.errors import SkydeckError
 from shared_models.ros2msg import ros2_type_name, skydeck_type_name
 
 __all__ = ["MessageMapping", "NotBridged", "message_mapping", "ros2_type_name", "service_mappings", "skydeck_type_name"]
 
 
-class NotBridged(Exception):
+class NotBridged(SkydeckError):
     """A type that cannot cross (one line: the type and why); ``quiet`` for Skydeck's own
     plumbing, which is never meant to cross and needs no warning."""
 

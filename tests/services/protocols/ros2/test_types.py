@@ -13,6 +13,7 @@ from pydantic import ValidationError
 
 from shared_models import all_interfaces
 from shared_models._message import Message
+from shared_models.catalogue import MESSAGE_PACKAGES
 from shared_models.cdr import codec_of
 from shared_models.ros2msg import FieldSpec, MessageSpec, specs_of
 
@@ -25,12 +26,13 @@ NOT_BRIDGED = ("rosapi_msgs/", "skydeck_launch/")
 
 
 def _wheel_types() -> list[str]:
-    names = []
-    for name, cls in sorted(all_interfaces().items()):
-        if not issubclass(cls, Message) or name.startswith(NOT_BRIDGED):
-            continue
-        names.append(name)
-    return names
+    """Every message type of the packages Skydeck declares (its Python catalogue), but its own
+    plumbing: each has a ROS 2 wheel or is built by `make install-ros2`. (The tutorial packages
+    Skydeck ships as definition files are not built: the bridge refuses them in one line.)"""
+    return [
+        name for name, cls in sorted(all_interfaces().items())
+        if issubclass(cls, Message) and name.split("/")[0] in MESSAGE_PACKAGES and not name.startswith(NOT_BRIDGED)
+    ]
 
 
 def _ros_class(name: str) -> Any:
