@@ -191,3 +191,12 @@ def test_endpoint_ports_reach_the_core_as_its_flags() -> None:
     default_core, *_ = plan_launch(spec, LaunchOptions(seed=1))
     assert "--rosbridge-port" not in default_core.args  # the core's own setting decides
 
+
+
+def test_ros2_adds_the_bridge_on_the_port_after_the_last() -> None:
+    spec = load_launch_file(services.launch.find_launch_file("robot"))
+    plans = plan_launch(spec, LaunchOptions(seed=1, base_port=9100, ros2=True))
+    assert [(plan.name, plan.port) for plan in plans] == [("core", 9100), ("sim", 9101), ("ros2_bridge", 9102)]
+    assert default_command(plans[-1])[-4:] == ["run", "ros2_bridge", "--port", "9102"]
+    with pytest.raises(LaunchError, match="past 65535"):
+        plan_launch(spec, LaunchOptions(seed=1, base_port=65534, ros2=True))
