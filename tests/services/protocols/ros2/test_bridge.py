@@ -33,12 +33,13 @@ def test_an_unmodified_rclpy_talker_is_seen_by_topic_echo_and_listed_as_ros2(rob
         echoed = robot.skydeck("topic", "echo", "/chatter", "-n", "2", "--timeout", "30", timeout_s=40)
         assert echoed.returncode == 0, echoed.stderr
         assert "data: hello " in echoed.stdout
-        nodes = robot.skydeck("node", "list").stdout.split()
-        assert "/talker" in nodes and f"/ros2_bridge_{robot.domain}" in nodes
-        types = robot.skydeck("topic", "list", "-t").stdout
-        assert "/chatter [std_msgs/msg/String]" in types
-        graph = robot.skydeck("node", "info", "/talker").stdout
-        assert "/chatter [std_msgs/msg/String]" in graph
+        nodes = robot.skydeck("node", "list").stdout.splitlines()
+        assert f"/talker (ROS 2, via /ros2_bridge_{robot.domain})" in nodes and f"/ros2_bridge_{robot.domain}" in nodes
+        types = robot.skydeck("topic", "list", "-t").stdout.splitlines()
+        assert "/chatter [std_msgs/msg/String] (from ROS 2)" in types
+        assert "/scan [sensor_msgs/msg/LaserScan]" in types  # Skydeck's own, not marked
+        info = robot.skydeck("node", "info", "/talker").stdout
+        assert "/chatter [std_msgs/msg/String]" in info and f"System: ROS 2, via /ros2_bridge_{robot.domain}" in info
         doctor = robot.skydeck("doctor").stdout
         assert f"[ok] ROS 2 bridge /ros2_bridge_{robot.domain} joined DDS domain {robot.domain}" in doctor
     finally:
