@@ -20,6 +20,7 @@ from services.cli import (
     service,
     topic,
 )
+from services.cli.settings import CliSettings, use_cli_settings
 from shared_models.errors import SkydeckError
 
 __all__ = ["build_parser", "main"]
@@ -63,6 +64,7 @@ def main(argv: list[str] | None = None) -> int:
         parser.error(f"unrecognized arguments: {' '.join(extra)}")
     args.extra = extra
     try:
+        use_cli_settings(CliSettings())  # read once, here: every verb asks cli_settings()
         return int(args.func(args) or 0)
     except KeyboardInterrupt:  # first: rospy's ROSInterruptException is also a Skydeck error
         return 130

@@ -15,7 +15,7 @@ import os
 import re
 from typing import Any
 
-from services.protocols.ros2.dds import DdsSide, RosGraph, environment_note
+from services.protocols.ros2.dds import DdsSide, RosGraph
 from services.protocols.ros2.services import ServiceBridge
 from services.protocols.ros2.topics import TopicBridge
 from services.runtime import Node, NodeSettings
@@ -38,13 +38,16 @@ def bridge_node_name(domain: int) -> str:
 class Ros2Bridge(Node):
     """Skydeck <-> ROS 2 on DDS domain ``domain``, for names matching ``topics``/``services``."""
 
-    def __init__(self, domain: int, topics: str = ".*", services: str = ".*", *, settings: NodeSettings | None = None) -> None:
+    def __init__(
+        self, domain: int, topics: str = ".*", services: str = ".*", *, discovery: str = "", settings: NodeSettings | None = None
+    ) -> None:
         super().__init__(bridge_node_name(domain), settings=settings)
         read_only = ParameterDescriptor(read_only=True)
         self.declare_parameter("domain_id", domain, read_only)
         self.declare_parameter("topics", topics, read_only)
         self.declare_parameter("services", services, read_only)
         self.domain = domain
+        self._discovery = discovery  # for the start-up line (Ros2Settings.discovery)
         self._topic_pattern = re.compile(topics)
         self._service_pattern = re.compile(services)
         self.dds: DdsSide | None = None
@@ -60,7 +63,7 @@ class Ros2Bridge(Node):
         self.dds.start()
         await super().start()
         logger.info(
-            "%s joined ROS 2 domain %d as %s (%s)", self.get_name(), self.domain, self.dds.name, environment_note()
+            "%s joined ROS 2 domain %d as %s (%s)", self.get_name(), self.domain, self.dds.name, self._discovery
         )
 
     async def stop(self) -> None:

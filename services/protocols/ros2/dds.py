@@ -18,7 +18,6 @@ own DDS writers from others: a message the bridge itself sent out is never taken
 from __future__ import annotations
 
 import contextlib
-import os
 import threading
 from dataclasses import dataclass, field
 from typing import Any
@@ -183,9 +182,3 @@ class DdsSide:
             transient_local=qos.durability == DurabilityPolicy.TRANSIENT_LOCAL,
         )
 
-
-def environment_note() -> str:
-    """How discovery is set here (for the start-up line)."""
-    scope = os.environ.get("ROS_AUTOMATIC_DISCOVERY_RANGE", "SUBNET")
-    peers = os.environ.get("ROS_STATIC_PEERS", "")
-    return f"discovery {scope.lower()}" + (f", peers {peers}" if peers else "")

@@ -6,14 +6,13 @@ façade): from the installed distributions and the interface build's digest.
 
 from __future__ import annotations
 
-import os
 import re
 from importlib.metadata import PackageNotFoundError, version
 from typing import Any
 
 from services.protocols.ros2.interface_build import packages_to_build, stamp_path
 
-__all__ = ["INSTALL_HINT", "default_domain", "doctor_findings", "missing_extra", "missing_interfaces"]
+__all__ = ["INSTALL_HINT", "doctor_findings", "missing_extra", "missing_interfaces"]
 
 INSTALL_HINT = "run `make install-ros2` (or `pip install -e '.[ros2]'`, then `python -m services.protocols.ros2.interface_build`)"
 # The distributions without which there is no DDS side at all.
@@ -42,12 +41,6 @@ def missing_interfaces() -> list[str]:
     if stamp.exists() and stamp.read_text().strip() == _digest(packages):
         return []
     return packages
-
-
-def default_domain() -> int:
-    """ROS 2's default: ``ROS_DOMAIN_ID``, else 0."""
-    text = os.environ.get("ROS_DOMAIN_ID", "").strip()
-    return int(text) if text.isdigit() else 0
 
 
 def doctor_findings(graph: dict[str, Any] | None) -> list[tuple[str, str, str]]:

@@ -10,9 +10,6 @@ from shared_models.errors import SkydeckError
 
 __all__ = ["BridgeUnavailable", "add_bridge_arguments", "main", "run_bridge"]
 
-_MAX_DOMAIN = 232  # ROS 2's highest domain id (its UDP ports run out above it)
-
-
 class BridgeUnavailable(SkydeckError):
     """The bridge cannot start here: its extra is missing, or an option is wrong."""
 
@@ -35,11 +32,18 @@ def main(argv: list[str] | None = None) -> int:
 def run_bridge(domain: int | None, topics: str, services: str) -> int:
     """Run the bridge on ``domain`` (default: ROS_DOMAIN_ID, else 0) until Ctrl-C or SIGTERM."""
     # Imported here: the CLI loads this module for its options on every command.
-    from services.protocols.ros2.extra import default_domain, missing_extra, missing_interfaces
+    from pydantic import ValidationError
 
-    domain = default_domain() if domain is None else domain
-    if not 0 <= domain <= _MAX_DOMAIN:
-        raise BridgeUnavailable(f"--domain must be 0 to {_MAX_DOMAIN}, not {domain}")
+    from services.protocols.ros2.extra import missing_extra, missing_interfaces
+    from services.protocols.ros2.settings import MAX_DOMAIN, Ros2Settings
+
+    try:
+        ros2 = Ros2Settings()
+    except ValidationError as error:
+        raise BridgeUnavailable(f"ROS_DOMAIN_ID: {error.errors()[0]['msg']} (a DDS domain id, 0 to {MAX_DOMAIN})") from None
+    domain = ros2.domain_id if domain is None else domain
+    if not 0 <= domain <= MAX_DOMAIN:
+        raise BridgeUnavailable(f"--domain must be 0 to {MAX_DOMAIN}, not {domain}")
     for flag, pattern in (("--topics", topics), ("--services", services)):
         try:
             re.compile(pattern)
@@ -59,5 +63,5 @@ def run_bridge(domain: int | None, topics: str, services: str) -> int:
             "skydeck: the ROS 2 interfaces of %s are not built, so their topics are not bridged: "
             "run `make install-ros2`", ", ".join(missing),
         )
-    spin(Ros2Bridge(domain, topics, services))
+    spin(Ros2Bridge(domain, topics, services, discovery=ros2.discovery()))
     return 0

@@ -76,7 +76,7 @@ def test_without_the_extra_the_bridge_is_one_line(monkeypatch: pytest.MonkeyPatc
     assert capsys.readouterr().err.count("\n") == 1
 
 
-def test_bad_options_are_one_line(capsys: pytest.CaptureFixture[str]) -> None:
+def test_bad_options_are_one_line(capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> None:
     from services.cli.main import main
 
     assert main(["bridge", "ros2", "--domain", "233"]) == 1
@@ -86,3 +86,7 @@ def test_bad_options_are_one_line(capsys: pytest.CaptureFixture[str]) -> None:
     assert lines[0] == "skydeck: error: --domain must be 0 to 232, not 233"
     assert lines[1].startswith("skydeck: error: --topics '(unclosed' is not a regular expression: ")
     assert lines[2].startswith("skydeck: error: --services '*' is not a regular expression: ")
+    monkeypatch.setenv("ROS_DOMAIN_ID", "lab")
+    assert main(["bridge", "ros2"]) == 1
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert line.startswith("skydeck: error: ROS_DOMAIN_ID: ") and line.endswith("(a DDS domain id, 0 to 232)")
