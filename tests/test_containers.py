@@ -111,7 +111,7 @@ def _flag(command: list[Any], flag: str) -> str | None:
 
 def test_docker_compose_config_accepts_the_file() -> None:
     resolved = resolve("drone")
-    assert set(resolved["services"]) == set(PORTS)
+    assert set(started_services(resolved)) == set(PORTS)
     sim = resolved["services"]["sim"]
     assert sim["environment"]["SKYDECK_SIM_SPEED"] == "1" and _flag(sim["command"], "--boxes") == "8"
 
@@ -222,6 +222,7 @@ def test_the_readme_shows_each_command_on_one_line() -> None:
 
 
 def test_the_five_processes_from_one_image(services: dict[str, dict[str, Any]]) -> None:
+    services = {name: service for name, service in services.items() if not service.get("profiles")}
     assert set(services) == set(PORTS)
     assert {service["image"] for service in services.values()} == {"skydeck:local"}
     assert {str(service["build"]) for service in services.values()} == {"."}
@@ -239,6 +240,19 @@ def test_the_ai_keeps_its_progress_in_a_named_volume(
 
 
 # -- commands: what the CLI and the nodes accept --------------------------------------------------
+
+
+def test_the_ros2_profile_adds_the_bridge_from_an_image_with_the_extra(
+    services: dict[str, dict[str, Any]], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    bridge = services["ros2_bridge"]
+    assert bridge["profiles"] == ["ros2"] and bridge["image"] == "skydeck:ros2"
+    assert bridge["build"]["args"]["SKYDECK_EXTRAS"] == "ros2"
+    assert "ARG SKYDECK_EXTRAS" in DOCKERFILE.read_text()
+    args, extra = _command(bridge)
+    assert (args.command, args.node, args.port, args.core_url) == ("run", "ros2_bridge", 8005, CORE_URL)
+    assert health_url(bridge) == "http://127.0.0.1:8005/health"
+    _assert_node_accepts("ros2_bridge", extra, monkeypatch)
 
 
 def test_core_command(services: dict[str, dict[str, Any]]) -> None:

@@ -63,7 +63,7 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
 
 def _doctor(args: argparse.Namespace) -> int:
     found = _Found({})
-    running: list[Callable[[], list[Check]]] = [_python, _venv, _packages, _web_ui, lambda: _core_and_clock(found), lambda: _ports(found)]
+    running: list[Callable[[], list[Check]]] = [_python, _venv, _packages, _web_ui, lambda: _core_and_clock(found), lambda: _ports(found), _ros2]
     testing: list[Callable[[], list[Check]]] = [_browser, _test_tools]
     failed = warned = 0
     for title, checks in (("running Skydeck", running), ("running the tests (make test)", testing)):
@@ -256,3 +256,16 @@ def _test_tools() -> list[Check]:
         else:
             found.append(Check("ok", "Node.js and the protocol clients' packages installed"))
     return found
+
+
+def _ros2() -> list[Check]:
+    """The ROS 2 bridge's extra, and the domain a running bridge joined (its module says)."""
+    import httpx
+
+    from services.protocols.ros2.extra import doctor_findings
+
+    try:
+        graph = httpx.get(core_url() + "/api/graph", headers=auth_headers(), timeout=3.0).json()
+    except (httpx.HTTPError, ValueError):
+        graph = None
+    return [Check(*finding) for finding in doctor_findings(graph)]

@@ -39,6 +39,7 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.add_argument("--boxes", type=int, help="drone world: number of boxes (default 8)")
     p.add_argument("--robots", type=int, help="robot world: number of robots, each in its namespace (default 1)")
     p.add_argument("--exclude", default="", help="nodes to leave out, comma-separated (e.g. perception,ai)")
+    p.add_argument("--ros2", action="store_true", help="start the ROS 2 bridge too (`skydeck bridge ros2`; domain ROS_DOMAIN_ID, else 0)")
     add_endpoint_flags(p, moved_by=", moved as far as the base port")
     p.set_defaults(func=_launch, extra_positionals="launch_args")  # NAME:=VALUE after options too
 
@@ -69,8 +70,14 @@ def _launch(args: argparse.Namespace) -> int:
         boxes=args.boxes,
         exclude=tuple(name.strip() for name in args.exclude.split(",") if name.strip()),
         robots=args.robots,
+        ros2=args.ros2,
         endpoint_ports={e.name: getattr(args, e.setting) for e in ENDPOINTS if getattr(args, e.setting) is not None},
     )
+    if args.ros2:  # said at once, before anything starts
+        from services.protocols.ros2.extra import missing_extra
+
+        if (reason := missing_extra()) is not None:
+            raise CliError(reason)
     launch_args = {}
     for text in args.launch_args:
         name, separator, value = text.partition(":=")

@@ -11,6 +11,7 @@ from pydantic import ValidationError
 from services.cli import (
     action,
     bag,
+    bridge,
     completion,
     doctor,
     interface,
@@ -34,7 +35,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     subparsers = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     run.add_parsers(subparsers)
-    for module in (topic, service, action, node, param, interface, bag, doctor, completion):
+    for module in (topic, service, action, node, param, interface, bag, bridge, doctor, completion):
         module.add_parser(subparsers)
     _add_optional(subparsers)
     return parser

@@ -58,6 +58,9 @@ class LaunchOptions:
     # default port moved as far as the base port moves the core (rosbridge 9090 at base 8000,
     # 20430 at base 19340), so launches side by side do not compete for them.
     endpoint_ports: Mapping[str, int] = field(default_factory=dict)
+    # `--ros2`: the ROS 2 bridge (`skydeck run ros2_bridge`) starts with the rest, on the port
+    # after the launch file's last, on ROS_DOMAIN_ID's domain (else 0).
+    ros2: bool = False
 
     def __post_init__(self) -> None:
         if not 1 <= self.base_port <= 65535:
@@ -159,7 +162,7 @@ def plan_launch(spec: LaunchSpec, options: LaunchOptions) -> tuple[NodePlan, ...
             f"does not have; its nodes are: {', '.join(spec.names)}"
         )
     last = options.base_port + max(node.port_offset for node in spec.nodes)
-    if last > 65535:
+    if last + options.ros2 > 65535:
         raise LaunchError(
             f"--base-port {options.base_port} puts the last node on port {last}, past 65535: "
             "choose a lower base port"
@@ -168,6 +171,8 @@ def plan_launch(spec: LaunchSpec, options: LaunchOptions) -> tuple[NodePlan, ...
     nodes = [node for node in spec.nodes if node.name not in options.exclude]
     nodes.sort(key=lambda node: not node.is_core)  # stable: the core first, the rest as listed
     plans = [_plan(node, options.base_port, values) for node in nodes]
+    if options.ros2:
+        plans.append(NodePlan(name="ros2_bridge", run="ros2_bridge", port=last + 1))
     if not any(plan.is_core for plan in plans):
         return tuple(plans)
     for endpoint, port in options.core_endpoints().items():

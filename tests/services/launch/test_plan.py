@@ -230,3 +230,11 @@ def test_an_endpoint_moved_past_65535_is_one_line_when_the_launch_starts_a_core(
     assert plan_launch(spec, given)[0].args[-4:] == ("--rosbridge-port", "0", "--foxglove-port", "0")
     joining = LaunchOptions(seed=1, base_port=65000, exclude=("core",))  # a running core: none planned
     assert [plan.name for plan in plan_launch(spec, joining)] == ["sim", "perception", "control", "ai"]
+
+def test_ros2_adds_the_bridge_on_the_port_after_the_last() -> None:
+    spec = load_launch_file(services.launch.find_launch_file("robot"))
+    plans = plan_launch(spec, LaunchOptions(seed=1, base_port=9100, ros2=True))
+    assert [(plan.name, plan.port) for plan in plans] == [("core", 9100), ("sim", 9101), ("ros2_bridge", 9102)]
+    assert default_command(plans[-1])[-4:] == ["run", "ros2_bridge", "--port", "9102"]
+    with pytest.raises(LaunchError, match="past 65535"):
+        plan_launch(spec, LaunchOptions(seed=1, base_port=65534, ros2=True))
