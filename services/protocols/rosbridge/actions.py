@@ -62,7 +62,7 @@ class CancelActionGoal(RosbridgeOp):
     action: str
 
 
-class _GoalFailed(Exception):
+class _GoalFailed(SkydeckError):
     """A goal that could not be run: its ``action_result`` has ``result: false`` and this text."""
 
 
@@ -162,7 +162,7 @@ class ActionGoals:
         op = goal.op
         try:
             response = await self._result_of(goal)
-        except (_GoalFailed, SkydeckError, ValueError) as error:
+        except (SkydeckError, ValueError) as error:  # _GoalFailed, and the core's own refusals
             result = {"op": "action_result", "action": op.action, "values": str(error).splitlines()[0],
                       "status": GoalStatusCode.UNKNOWN, "result": False}  # fmt: skip
         else:
