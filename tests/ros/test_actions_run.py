@@ -112,6 +112,20 @@ def test_ros1_cancel_preempts_the_goal(core: System, ros1_server: BackgroundProc
     ros1_server.wait_for_line("/fibonacci: Preempted", 10)
 
 
+
+def test_ros1_goal_callback_mode_and_send_goal_and_wait(core: System) -> None:
+    with ros_file(core, ROS1 / "averaging_server.py", "_rate:=40", sim_time=False) as server:
+        server.wait_for_line("/averaging registered", 30)
+        runs = {}
+        for args in (("20",), ("4",), ("400", "0.5")):
+            with ros_file(core, ROS1 / "averaging_client.py", *args, sim_time=False) as client:
+                runs[args[0]] = _finished(client)
+        server.wait_for_line("/averaging: Preempted", 10)
+    assert "state: SUCCEEDED" in runs["20"] and "mean: 10.50 std_dev: 5.766 text: " in runs["20"]
+    assert "state: ABORTED" in runs["4"] and "mean: 2.50 std_dev: 1.118 text: " in runs["4"]
+    # Not done within its 0.5 s: send_goal_and_wait cancels it; the preempt callback ends it.
+    assert "state: PREEMPTED" in runs["400"] and "mean: 0.00 std_dev: 0.000 text: " in runs["400"]
+
 # -- the CLI ------------------------------------------------------------------------------------
 
 

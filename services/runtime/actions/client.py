@@ -31,7 +31,9 @@ __all__ = ["ActionClient", "ClientGoal"]
 
 _READY_POLL_S = 0.05
 _RESULT_CALL_TIMEOUT_S = 300.0  # one get_result call; a goal running longer is asked again
-_CALL_TIMEOUT_S = 10.0
+# send_goal and cancel_goal wait for the server's callbacks, which wait for its executor: one
+# busy with a long goal (rclpy.spin's single thread) answers when it ends. ROS waits for ever.
+_CALL_TIMEOUT_S = 300.0
 
 
 class ClientGoal:
