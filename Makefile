@@ -6,7 +6,9 @@ STAMP := $(VENV)/.installed
 
 .PHONY: install up robot test test-deps lint bench clean
 
+# The last line says how a new terminal finds `skydeck` (tests/services/launch/test_next_steps.py).
 install: $(STAMP)
+	@echo "skydeck is installed in $(VENV)/bin; in each new terminal, first: source $(abspath $(VENV))/bin/activate"
 
 # Reinstall only when the lock or the project metadata change, so `make install` is idempotent.
 $(STAMP): requirements.lock pyproject.toml web_ui/vendor/package-lock.json tests/clients/package-lock.json
@@ -17,11 +19,11 @@ $(STAMP): requirements.lock pyproject.toml web_ui/vendor/package-lock.json tests
 	cd tests/clients && npm ci --silent --no-audit --no-fund
 	touch $(STAMP)
 
-up: install
+up: $(STAMP)
 	$(BIN)/skydeck launch
 
 # The robot world (the second seed's Neato class): the core and the simulator's room.
-robot: install
+robot: $(STAMP)
 	$(BIN)/skydeck launch robot
 
 # System packages the tests drive for real: Debian's Chromium (browser tests), the
@@ -30,16 +32,16 @@ test-deps:
 	@command -v chromium >/dev/null && command -v docker-compose >/dev/null && command -v zsh >/dev/null || \
 		{ apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium docker-compose zsh >/dev/null; }
 
-test: install test-deps
+test: $(STAMP) test-deps
 	docker-compose -f docker-compose.yml config --quiet
 	docker-compose -f docker-compose.yml -f docker-compose.robot.yml config --quiet
 	$(BIN)/python -m pytest -q
 
-lint: install
+lint: $(STAMP)
 	$(BIN)/ruff check .
 	$(BIN)/mypy services shared_models sim_server
 
-bench: install
+bench: $(STAMP)
 	$(BIN)/skydeck bench --out bench.json
 
 clean:

@@ -29,6 +29,7 @@ from typing import TYPE_CHECKING, TextIO
 
 from services.launch.child_process import ChildProcess, Health, describe_exit, signal_group, spawn
 from services.launch.errors import LaunchError
+from services.launch.next_steps import next_steps
 from services.launch.plan import LaunchOptions, NodePlan, core_url, default_command, plan_launch
 from services.launch.spec import LaunchSpec
 from services.runtime.http_client import HttpClient, HttpError
@@ -186,6 +187,9 @@ class Supervisor:
             raise
         if not self._stopping:
             self._say(f"all {len(self._children)} nodes up; Ctrl-C stops them")
+            if any(plan.is_core for plan in self.plans):
+                for line in next_steps(self.core_url):
+                    self._say(line)
 
     async def stop(self) -> None:
         """Stop every node, last started first, and their process groups; safe to call twice."""
