@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from services.cli.arguments import known_type, ros_name
-from services.cli.core_client import error_detail, get_json, post_json
+from services.cli.core_client import error_detail, get_json, post_json, unknown_name
 from services.cli.errors import CliError
 from services.cli.formatting import parse_data, to_yaml
 
@@ -40,7 +40,7 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
 
 
 def _lookup(name: str) -> dict[str, str]:
-    return get_json(f"/api/services{name}", missing=f"unknown service {name}: see `skydeck service list`")  # type: ignore[no-any-return]
+    return get_json(f"/api/services{name}", missing=unknown_name("service", name))  # type: ignore[no-any-return]
 
 
 def _list(args: argparse.Namespace) -> int:
@@ -75,6 +75,8 @@ def _find(args: argparse.Namespace) -> int:
 def _call(args: argparse.Namespace) -> int:
     name = ros_name(args.service)
     reply = post_json(name, parse_data(args.data), timeout_s=args.timeout)
+    if reply.status_code == 404:  # no such service (or topic): the nearest ones it has
+        raise CliError(unknown_name("service", name)())
     if reply.status_code != 200:
         raise CliError(f"{name}: {error_detail(reply)} (HTTP {reply.status_code})")
     print(to_yaml(reply.json()))

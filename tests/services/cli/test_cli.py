@@ -80,7 +80,7 @@ async def test_service_list_info_and_call(core, start_node) -> None:
     status, out, _ = await skydeck(core.url, "service", "call", "/talker/ping")
     assert status == 0 and "success: true" in out and "message: pong" in out
     status, _, err = await skydeck(core.url, "service", "call", "/talker/pong")
-    assert status == 1 and "no service /talker/pong" in err
+    assert status == 1 and "unknown service /talker/pong (did you mean /talker/ping?)" in err
     status, _, err = await skydeck(core.url, "service", "call", "/talker/ping", "{extra: 1}")
     assert status == 1 and "extra" in err and "422" in err
 
