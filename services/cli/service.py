@@ -16,8 +16,14 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     service = subparsers.add_parser("service", help="list, inspect and call services")
     verbs = service.add_subparsers(dest="verb", required=True, metavar="VERB")
 
-    p = verbs.add_parser("list", help="list the services of the running system")
+    p = verbs.add_parser(
+        "list",
+        help="list the services of the running system: the world's commands first, then parameter services",
+    )
     p.add_argument("-t", "--show-types", action="store_true", help="show each service's type")
+    p.add_argument(
+        "-a", "--all", action="store_true", help="also Skydeck's own services (rosapi's, the launch's), listed last"
+    )
     p.set_defaults(func=_list)
 
     p = verbs.add_parser("info", help="node, URL and type of a service")
@@ -44,8 +50,16 @@ def _lookup(name: str) -> dict[str, str]:
 
 
 def _list(args: argparse.Namespace) -> int:
-    for service in get_json("/api/graph")["services"]:
-        print(service["name"] + (f" [{service['type']}]" if args.show_types else ""))
+    from services.runtime.service_groups import ServiceGroup, service_group
+
+    # The world's commands lead; the nodes' parameter services follow, as `ros2 service list`
+    # lists them too; Skydeck's own (rosapi for rosbridge clients, the launch's) only with --all,
+    # as ros2 lists hidden services only when asked.
+    grouped = sorted((service_group(s["name"], s["node"]), s["name"], s["type"]) for s in get_json("/api/graph")["services"])
+    for group, name, type_name in grouped:
+        if group is ServiceGroup.SYSTEM and not args.all:
+            continue
+        print(name + (f" [{type_name}]" if args.show_types else ""))
     return 0
 
 
