@@ -114,7 +114,11 @@ class AiNode(Node):
         ai: AiSettings | None = None,
         store: ProgressStore | None = None,
     ) -> None:
-        super().__init__("ai", settings=settings or process_settings(NodeSettings, port=DEFAULT_PORT))
+        # A node of the simulated world: it follows the simulator's clock unless told otherwise
+        # (SKYDECK_USE_SIM_TIME=false, -p use_sim_time:=false), so /ai/status is stamped in sim
+        # time as the simulator's and control's messages are, also when run by hand.
+        settings = settings or process_settings(NodeSettings, port=DEFAULT_PORT, use_sim_time=True)
+        super().__init__("ai", settings=settings)
         self.ai = ai or AiSettings()
         # The landing policy is a parameter too (`-p landing:=home`, `skydeck param set /ai landing
         # home`), its default the flag's; a new value applies from the next tour planned.
