@@ -38,6 +38,8 @@ from services.core.protocols.servers import EndpointServers, bind_endpoints
 from services.core.recordings import Recordings, default_recordings_dir
 from services.core.recordings import router as recordings_router
 from services.core.registry import Registry
+from services.core.rosout_log import RosoutLog
+from services.core.rosout_log import router as rosout_router
 from services.core.service_calls import ServiceCalls
 from services.core.sessions import serve_session
 from services.core.settings import CoreSettings
@@ -101,6 +103,8 @@ def create_app(
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
         http = HttpClient()
         core_node.start()
+        app.state.rosout = RosoutLog(core_node)
+        app.state.rosout.start()
         guests = Guests(registry, core_node.participant.url)
         calls = ServiceCalls(registry, guests, settings, http)
         gateway = Gateway(registry, core_node, settings, http, calls)
@@ -121,6 +125,7 @@ def create_app(
             await endpoints.stop()
             app.state.foxglove.close()
             app.state.recordings.close()
+            app.state.rosout.stop()
             core_node.stop()
             await http.aclose()
 
@@ -146,6 +151,7 @@ def create_app(
     app.include_router(api_router)
     app.include_router(recordings_router)
     app.include_router(parameter_server_router)
+    app.include_router(rosout_router)
 
     @app.get("/health", tags=["core"])
     async def health() -> dict[str, Any]:

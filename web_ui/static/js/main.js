@@ -283,9 +283,11 @@ function renderLegendLayers() {
   const box = $("legend-layers");
   box.replaceChildren();
   for (const layer of layers.list()) {
+    const item = document.createElement("span");
     const swatch = document.createElement("i");
     swatch.style.background = layer.color;
-    box.append(swatch, document.createTextNode(layer.topic));
+    item.append(swatch, document.createTextNode(layer.topic));
+    box.append(item);
   }
 }
 layers.addEventListener("change", renderLegendLayers);
