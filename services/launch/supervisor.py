@@ -3,8 +3,9 @@
     spec = load_launch_file(default_launch_file())
     exit_code = asyncio.run(Supervisor(spec, LaunchOptions(base_port=9000)).run())
 
-Nodes start one at a time in launch order, the core first; each must answer
-``GET /health`` with 200 before the next starts. Every child runs in its own session (its own
+The core starts first and must answer ``GET /health`` with 200; then every other node starts at
+once, as roslaunch starts them (each waits for what it needs: the core, a service, a topic), and
+the launch is up when each answers ``/health``; their ready lines come in launch order. Every child runs in its own session (its own
 process group), so stopping a node kills whatever it started too, and a Ctrl-C in the terminal
 reaches only the supervisor, which then stops the nodes in reverse order: SIGTERM to the group,
 up to ``stop_timeout_s`` to exit, then SIGKILL. Children's output lines are forwarded with a
@@ -168,18 +169,15 @@ class Supervisor:
                 self._check_ports_free()
                 self._http = HttpClient()
                 self._announce()
-                parameters_set = False
-                for child in self._children.values():
+                children = list(self._children.values())
+                for child in (child for child in children if child.plan.is_core):
                     if self._stopping:
                         return
-                    if not child.plan.is_core and not parameters_set:
-                        await self._set_parameters()
-                        parameters_set = True
                     await self._start_first(child)
-                    if child.plan.is_core and self._control_wanted:
-                        await self._start_control()
-                if not parameters_set:
-                    await self._set_parameters()
+                if self._stopping:
+                    return
+                await self._set_parameters()  # before any other node starts (roslaunch's <param>s)
+                await self._start_together([child for child in children if not child.plan.is_core])
             finally:
                 self._start_idle.set()
         except BaseException:
@@ -315,9 +313,44 @@ class Supervisor:
         self._say(f"set {count} parameter{'s' if count != 1 else ''} on the core's parameter server")
 
     async def _start_first(self, child: _Child) -> None:
-        plan = child.plan
         await self._spawn(child)
-        outcome = await self._wait_healthy(child)
+        await self._settle_first(child, await self._wait_healthy(child))
+
+    async def _start_together(self, children: list[_Child]) -> None:
+        """Start ``children`` at once and wait until each is ready (on two cores the launch is up
+        in about half the time one after the other takes: a node's start is mostly its imports).
+        A node is ready (and watched) as soon as it answers; its ready line waits for those of
+        the nodes before it, so they read in launch order. The launch's own node starts last:
+        its imports would take CPU from the nodes starting (`skydeck node kill` needs it only
+        once they are up)."""
+        for child in children:
+            if self._stopping:
+                return
+            await self._spawn(child)
+        lines: list[str | None] = [None] * len(children)
+        said = 0
+
+        async def settle(index: int, child: _Child) -> Health:
+            nonlocal said
+            outcome = await self._wait_healthy(child)
+            if outcome is Health.READY:
+                lines[index] = self._mark_ready(child)
+                child.watch = asyncio.create_task(self._watch(child), name=f"launch-watch-{child.plan.name}")
+                while said < len(lines) and (line := lines[said]) is not None:
+                    self._say(line)
+                    said += 1
+            return outcome
+
+        outcomes = await asyncio.gather(*(settle(index, child) for index, child in enumerate(children)))
+        for child, outcome in zip(children, outcomes, strict=True):  # the first failure, in launch order
+            if outcome is not Health.READY:
+                await self._settle_first(child, outcome)
+        if self._control_wanted and any(plan.is_core for plan in self.plans) and not self._stopping:
+            await self._start_control()
+
+    async def _settle_first(self, child: _Child, outcome: Health) -> None:
+        """A first start's outcome: ready (watched from now on), or a LaunchError saying why not."""
+        plan = child.plan
         if outcome is Health.READY:
             self._ready(child)
             child.watch = asyncio.create_task(self._watch(child), name=f"launch-watch-{plan.name}")
@@ -367,13 +400,16 @@ class Supervisor:
         )
 
     def _ready(self, child: _Child) -> None:
+        self._say(self._mark_ready(child))
+
+    def _mark_ready(self, child: _Child) -> str:
+        """The node is ready now (waiters are told); the line that says so."""
         child.state = NodeState.READY
         child.ready_count += 1
-        pid = child.pid
         took = time.monotonic() - child.started_at
         again = f", restart {child.starts - 1}" if child.starts > 1 else ""
-        self._say(f"{child.plan.name} ready at {child.plan.url} (pid {pid}, {took:.1f} s{again})")
         self._notify()
+        return f"{child.plan.name} ready at {child.plan.url} (pid {child.pid}, {took:.1f} s{again})"
 
     # -- respawning ---------------------------------------------------------------------------
 
