@@ -162,7 +162,7 @@ def test_screenshot_of_the_robot_world_in_3d(dashboard, system: System, tmp_path
         wait_display(page, "/odom", "d.trail > 60")
     finally:
         node.close()
-    follow_and_zoom(page, 2, "v.world.robot.robot")
+    follow_and_zoom(page, -9, "v.world.robot.robot")
     screenshot = screenshot_path("view3d_robot.png", tmp_path)
     page.locator("#map-panel").screenshot(path=str(screenshot))
     assert screenshot.stat().st_size > 10_000
