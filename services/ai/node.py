@@ -36,7 +36,7 @@ from services.ai.landing import (
     landing_spot,
 )
 from services.ai.planner import plan_tour
-from services.ai.progress import ProgressStore, WorldProgress, default_state_dir
+from services.ai.progress import ProgressStore, WorldProgress
 from services.ai.world import WorldTracker
 from services.runtime import (
     Client,
@@ -47,7 +47,7 @@ from services.runtime import (
     ServiceUnavailableError,
     spin,
 )
-from services.runtime.settings import process_settings, settings_from_flags
+from services.runtime.settings import node_settings, settings_from_flags
 from shared_models import Message
 from shared_models.errors import SkydeckError
 from shared_models.geometry_msgs import Point, Polygon, PoseStamped
@@ -114,10 +114,13 @@ class AiNode(Node):
         ai: AiSettings | None = None,
         store: ProgressStore | None = None,
     ) -> None:
-        # A node of the simulated world: it follows the simulator's clock unless told otherwise
-        # (SKYDECK_USE_SIM_TIME=false, -p use_sim_time:=false), so /ai/status is stamped in sim
-        # time as the simulator's and control's messages are, also when run by hand.
-        settings = settings or process_settings(NodeSettings, port=DEFAULT_PORT, use_sim_time=True)
+        if settings is None:
+            settings = node_settings().with_default_port(DEFAULT_PORT)
+            # A node of the simulated world: it follows the simulator's clock unless told otherwise
+            # (SKYDECK_USE_SIM_TIME=false, -p use_sim_time:=false), so /ai/status is stamped in sim
+            # time as the simulator's and control's messages are, also when run by hand.
+            if "use_sim_time" not in settings.model_fields_set:
+                settings = settings.model_copy(update={"use_sim_time": True})
         super().__init__("ai", settings=settings)
         self.ai = ai or AiSettings()
         # The landing policy is a parameter too (`-p landing:=home`, `skydeck param set /ai landing
@@ -131,7 +134,7 @@ class AiNode(Node):
                 additional_constraints=f"one of: {', '.join(LANDING_POLICIES)}",
             ),
         )
-        self.store = store or ProgressStore(default_state_dir(), warn=self.get_logger().warning)
+        self.store = store or ProgressStore(self.settings.skydeck_state_dir, warn=self.get_logger().warning)
         self.drone_position: Point | None = None
         self.tracker = WorldTracker()
         self._pose_wall_s = -math.inf

@@ -207,9 +207,9 @@ def _say(line: str) -> None:
 
 
 def _node_settings() -> Any:
-    from services.runtime.settings import NodeSettings, process_settings
+    from services.runtime.settings import node_settings
 
-    return process_settings(NodeSettings).model_copy(update={"port": 0})
+    return node_settings().model_copy(update={"port": 0})
 
 
 def _run(node: Node, keys: Callable[[], contextlib.AbstractContextManager[bool]] | None = None) -> bool:

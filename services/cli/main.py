@@ -10,6 +10,7 @@ from typing import cast
 from pydantic import ValidationError
 
 from services.cli import bag, completion, doctor, interface, node, param, run, service, topic
+from services.cli.settings import CliSettings, use_cli_settings
 from services.cli.suggestions import SuggestingParser
 from shared_models.errors import SkydeckError
 
@@ -59,6 +60,7 @@ def main(argv: list[str] | None = None) -> int:
         parser.error(f"unrecognized arguments: {' '.join(extra)}")
     args.extra = extra
     try:
+        use_cli_settings(CliSettings())  # read once, here: every verb asks cli_settings()
         return int(args.func(args) or 0)
     except KeyboardInterrupt:  # first: rospy's ROSInterruptException is also a Skydeck error
         return 130

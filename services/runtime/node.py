@@ -35,7 +35,7 @@ from services.runtime.ros_args import (
 from services.runtime.server import AppServer
 from services.runtime.service import Service
 from services.runtime.session import CoreSession, RegistrationRejected
-from services.runtime.settings import NodeSettings, process_settings, reachable_host
+from services.runtime.settings import NodeSettings, node_settings, reachable_host
 from services.runtime.subscription import RawSubscription, Subscription
 from services.runtime.timer import Timer
 from shared_models import Message, ServiceType, resolve_node_name
@@ -84,7 +84,7 @@ class Node(ParametersMixin):
         automatically_declare_parameters_from_overrides: bool = False,
         start_parameter_services: bool = True,
     ) -> None:
-        self.settings = settings or process_settings(NodeSettings)
+        self.settings = settings or node_settings()
         arguments = process_ros_arguments() if use_global_arguments else RosArguments()
         if cli_args:  # rclpy's form (["--ros-args", "-r", ...]) or the ROS arguments alone
             ros_part = split_ros_args(cli_args)[1] if ROS_ARGS in cli_args else cli_args

@@ -50,7 +50,7 @@ NODE_PROGRAM = textwrap.dedent(
     parser.add_argument("--ignore-term", action="store_true")
     parser.add_argument("--health-after")
     parser.add_argument("--touch")
-    args = parser.parse_args()
+    args, _ = parser.parse_known_args()  # a core's endpoint ports too (--rosbridge-port ...)
     print(f"hello on {args.port} core={os.environ.get('SKYDECK_CORE_URL')} "
           f"extra={os.environ.get('EXTRA', '')}")
     if args.exit is not None:

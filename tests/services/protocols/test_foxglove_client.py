@@ -8,7 +8,7 @@ import json
 import pytest
 
 from tests.conftest import wait_until
-from tests.services.core.protocols.conftest import Bridge
+from tests.services.protocols.conftest import Bridge
 
 pytestmark = pytest.mark.timeout(90)
 

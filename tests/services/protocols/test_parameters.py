@@ -9,7 +9,7 @@ import json
 import pytest
 from websockets.asyncio.client import connect
 
-from services.core.protocols.parameters import (
+from services.protocols.parameters import (
     ParameterError,
     ParameterValueJson,
     from_value,
@@ -17,9 +17,9 @@ from services.core.protocols.parameters import (
     to_value,
 )
 from shared_models.rcl_interfaces import ParameterType
-from tests.services.core.protocols.conftest import Bridge, Tuned
-from tests.services.core.protocols.test_foxglove import receive
-from tests.services.core.protocols.test_rosbridge import call
+from tests.services.protocols.conftest import Bridge, Tuned
+from tests.services.protocols.test_foxglove import receive
+from tests.services.protocols.test_rosbridge import call
 
 pytestmark = pytest.mark.timeout(60)
 

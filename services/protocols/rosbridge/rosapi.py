@@ -3,7 +3,7 @@
 The core hosts them as the node ``/rosapi`` (a guest: see :mod:`services.core.guests`), so a
 rosbridge client calls ``/rosapi/topics`` (or ``rosapi/topics``: names resolve against ``/``),
 and so can ``curl -X POST http://CORE/rosapi/topics`` or any node. Parameters go to each node's
-own parameter services (:mod:`.parameters`); the time is ``/clock``'s latest message while a
+own parameter services (:mod:`services.protocols.parameters`); the time is ``/clock``'s latest message while a
 simulator publishes it, else the wall clock.
 """
 
@@ -15,8 +15,9 @@ import time
 from collections.abc import Callable
 from typing import Any
 
-from services.core.protocols.access import CoreAccess
-from services.core.protocols.parameters import (
+from services.core.access import CoreAccess
+from services.protocols import ROS_DISTRO
+from services.protocols.parameters import (
     ParameterError,
     Parameters,
     ParameterValueJson,
@@ -35,10 +36,7 @@ from shared_models import rosapi_msgs as rosapi
 from shared_models.builtin_interfaces import Time
 from shared_models.interfaces import field_types
 
-__all__ = ["ROS_DISTRO", "host_rosapi", "typedefs"]
-
-ROS_DISTRO = "humble"
-"""The ROS 2 distribution whose definitions Skydeck follows (see docs/architecture.md)."""
+__all__ = ["host_rosapi", "typedefs"]
 
 _BRACKETS = re.compile(r"\[(<=)?(\d*)\]$")
 

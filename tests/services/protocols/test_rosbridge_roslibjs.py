@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 
 from tests.conftest import wait_until
-from tests.services.core.protocols.conftest import Bridge
+from tests.services.protocols.conftest import Bridge
 
 pytestmark = pytest.mark.timeout(90)
 

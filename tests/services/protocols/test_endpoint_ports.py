@@ -12,10 +12,10 @@ import sys
 import httpx
 import pytest
 
-from services.core.settings import CoreSettings
 from services.launch.plan import LaunchOptions
+from services.protocols.settings import CoreProcessSettings
 from tests.conftest import free_port
-from tests.services.core.protocols.conftest import Bridge
+from tests.services.protocols.conftest import Bridge
 
 pytestmark = pytest.mark.timeout(60)
 
@@ -23,10 +23,10 @@ pytestmark = pytest.mark.timeout(60)
 def test_defaults_are_the_tools_own_ports(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.delenv("SKYDECK_ROSBRIDGE_PORT", raising=False)
     monkeypatch.delenv("SKYDECK_FOXGLOVE_PORT", raising=False)
-    settings = CoreSettings()
+    settings = CoreProcessSettings()
     assert (settings.rosbridge_port, settings.foxglove_port) == (9090, 8765)
-    assert LaunchOptions().endpoint_ports({}) == {"--rosbridge-port": 9090, "--foxglove-port": 8765}
-    assert LaunchOptions(rosbridge_port=0).endpoint_ports({"SKYDECK_FOXGLOVE_PORT": "0"}) == {}
+    ports = LaunchOptions().core_endpoints()
+    assert {endpoint.name: port for endpoint, port in ports.items()} == {"rosbridge": 9090, "foxglove": 8765}
 
 
 async def run_cli(*args: str, timeout_s: float = 30.0) -> tuple[int, str]:

@@ -18,7 +18,7 @@ from websockets.typing import Subprotocol
 from services.runtime import Node, NodeSettings
 from shared_models.std_msgs import String
 from tests.conftest import wait_until
-from tests.services.core.protocols.conftest import Bridge
+from tests.services.protocols.conftest import Bridge
 
 pytestmark = pytest.mark.timeout(120)
 

@@ -26,7 +26,7 @@ from shared_models.std_msgs import Header, String
 from shared_models.std_srvs import Trigger, TriggerResponse
 from tests.conftest import CoreProcess, listening_socket, wait_until
 
-CLIENTS = Path(__file__).resolve().parents[3] / "clients"
+CLIENTS = Path(__file__).resolve().parents[2] / "clients"
 NODE = shutil.which("node")
 
 

@@ -3,18 +3,18 @@
     ws://CORE:9090/          (``--rosbridge-port``; 0 turns it off)
     ws://CORE:8000/rosbridge (always, on the core's own port)
 
-Each JSON text frame is one op (:mod:`.rosbridge_ops` reads them). Topics are read and published
-through the connection's :class:`~services.core.protocols.session.ClientSession` (an outbox per
+Each JSON text frame is one op (:mod:`.ops` reads them). Topics are read and published
+through the connection's :class:`~services.protocols.session.ClientSession` (an outbox per
 topic, the edge's validation, token and "no echo"); ``call_service`` takes the HTTP gateway's
-call path, and always ends with a ``service_response`` (``result: false`` and the reason in
-``values`` when no answer came within its ``timeout``, or the gateway's; a ``status`` error
-too). A service a client advertises is hosted by the core for it, so nodes and ``curl`` call
-it like any other.
+call path, and always ends with a ``service_response``: ``result: false`` and the reason in
+``values`` when it failed (no service, no answer within its ``timeout`` or the gateway's, no
+token), and nothing else, as rosbridge_server answers. A service a client advertises is hosted
+by the core for it, so nodes and ``curl`` call it like any other.
 
 A bad frame gets a ``status`` (level ``error``, the op's ``id``) and nothing else happens;
 ``set_level`` asks for ``warning`` and ``info`` statuses too, or ``none``. Statuses are replies
 to a client's own ops, never sent otherwise. A client that stops reading is closed with 4001
-(see :mod:`.session`). ``auth`` with the token as ``mac`` unlocks writing
+(see :mod:`services.protocols.session`). ``auth`` with the token as ``mac`` unlocks writing
 on a connection opened without it.
 """
 
@@ -24,17 +24,17 @@ import asyncio
 import itertools
 import json
 import logging
-from collections.abc import Awaitable, Callable
 from dataclasses import dataclass
 from typing import Any
 
 from pydantic import ValidationError
 from starlette.websockets import WebSocket
 
+from services.core.access import CoreAccess
 from services.core.gateway_topic import declared_type
-from services.core.protocols.access import CoreAccess
-from services.core.protocols.rosbridge_ops import (
-    OPS,
+from services.protocols.ops import JsonOps, Refused, describe_error
+from services.protocols.rosbridge.frames import PublishEnvelopes, fragments, status_frame
+from services.protocols.rosbridge.ops import (
     Advertise,
     AdvertiseService,
     Auth,
@@ -42,20 +42,15 @@ from services.core.protocols.rosbridge_ops import (
     Fragment,
     FragmentBuffer,
     Publish,
-    PublishEnvelopes,
-    Refused,
     ServiceResponse,
     SetLevel,
     Subscribe,
     Unadvertise,
     UnadvertiseService,
     Unsubscribe,
-    describe_error,
-    fragments,
     request_body,
-    status_frame,
 )
-from services.core.protocols.session import ClientSession, incoming
+from services.protocols.session import ClientSession, incoming
 from services.runtime.auth import token_is_valid
 from services.runtime.edge.frames import FrameRejected, close_with
 from services.runtime.edge.pump import Encode
@@ -83,7 +78,7 @@ class RosbridgeEndpoint:
     async def serve(self, websocket: WebSocket) -> None:
         """One rosbridge connection, from handshake to close."""
         await websocket.accept()
-        session = self.access.session(websocket, "rosbridge")
+        session = ClientSession.open(self.access, websocket, "rosbridge")
         connection = _Connection(self, session)
         try:
             stalled = await session.serve(connection.run(websocket), advice="subscribe with a throttle_rate")
@@ -91,6 +86,9 @@ class RosbridgeEndpoint:
             connection.close()
         if stalled is not None:
             await close_with(websocket, stalled.code, stalled.reason)
+
+    def close(self) -> None:
+        """Nothing outlives the connections (each closes its own when it ends)."""
 
 
 @dataclass
@@ -115,20 +113,20 @@ class _Connection:
         self._hosted: dict[str, _ClientService] = {}
         self._calls: set[asyncio.Task[None]] = set()
         self._fragments = FragmentBuffer(self._settings.max_message_bytes)
-        self._handlers: dict[str, Callable[[Any], Awaitable[None]]] = {
-            "advertise": self._advertise,
-            "unadvertise": self._unadvertise,
-            "publish": self._publish,
-            "subscribe": self._subscribe,
-            "unsubscribe": self._unsubscribe,
-            "call_service": self._call_service,
-            "service_response": self._service_response,
-            "advertise_service": self._advertise_service,
-            "unadvertise_service": self._unadvertise_service,
-            "set_level": self._set_level,
-            "auth": self._auth,
-            "fragment": self._fragment,
-        }
+        self._ops = JsonOps("rosbridge", {
+            "advertise": (Advertise, self._advertise),
+            "unadvertise": (Unadvertise, self._unadvertise),
+            "publish": (Publish, self._publish),
+            "subscribe": (Subscribe, self._subscribe),
+            "unsubscribe": (Unsubscribe, self._unsubscribe),
+            "call_service": (CallService, self._call_service),
+            "service_response": (ServiceResponse, self._service_response),
+            "advertise_service": (AdvertiseService, self._advertise_service),
+            "unadvertise_service": (UnadvertiseService, self._unadvertise_service),
+            "set_level": (SetLevel, self._set_level),
+            "auth": (Auth, self._auth),
+            "fragment": (Fragment, self._fragment),
+        })  # fmt: skip
 
     # -- the connection ---------------------------------------------------------------------------
 
@@ -152,23 +150,10 @@ class _Connection:
     async def _handle(self, text: str) -> None:
         op_id = None
         try:
-            try:
-                frame = json.loads(text)
-            except ValueError as error:
-                raise Refused(f"not JSON: {error}") from None
-            if not isinstance(frame, dict) or not isinstance(frame.get("op"), str):
-                raise Refused('a rosbridge message is a JSON object with an "op"')
+            frame = self._ops.parse(text)
             op_id = frame.get("id")
-            model = OPS.get(frame["op"])
-            handler = self._handlers.get(frame["op"])
-            if model is None or handler is None:
-                raise Refused(f"unknown op {frame['op']!r}: this endpoint speaks {', '.join(self._handlers)}")
-            try:
-                op = model.model_validate(frame)
-            except ValidationError as error:
-                raise Refused(describe_error(frame["op"], error)) from None
-            await handler(op)
-        except (Refused, SkydeckError) as error:
+            await self._ops.dispatch(frame)
+        except SkydeckError as error:  # Refused, and the core's own refusals
             await self._status("error", str(error), op_id)
 
     async def _status(self, level: str, text: str, op_id: Any = None) -> None:
@@ -270,10 +255,10 @@ class _Connection:
                 values, result = json.loads(reply.body), True
             else:
                 values, result = reply.detail(), False
-        except (Refused, SkydeckError, ValueError) as error:
+        except (SkydeckError, ValueError) as error:
             values, result, name = str(error), False, op.service
-        if not result:  # as rosbridge_server: the failure is also a status error (to the call's id)
-            await self._status("error", f"call_service {name}: {values}", op.id)
+        # A failure is this response alone, as rosbridge_server sends it (it logs the error on its
+        # side and sends no `status`, for which roslibpy has no handler: issue 32).
         response: dict[str, Any] = {"op": "service_response", "service": name, "values": values, "result": result}
         if op.id is not None:
             response["id"] = op.id

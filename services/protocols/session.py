@@ -1,4 +1,4 @@
-"""What a protocol adapter's connection does with the core, in one place for every protocol.
+"""What a protocol endpoint's connection does with the core, in one place for every protocol.
 
 An adapter (rosbridge, Foxglove) translates its frames into these calls and nothing else:
 
@@ -26,10 +26,11 @@ import contextlib
 import time
 from collections.abc import AsyncIterator, Coroutine
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
+from services.core.access import CoreAccess
 from services.core.gateway_topic import GatewayTopic
 from services.core.guests import Guest
 from services.core.service_calls import ServiceReply
@@ -39,9 +40,6 @@ from services.runtime.edge.outbox import Outbox
 from services.runtime.edge.pump import Encode, watch_stall, write_outbox
 from services.runtime.wire import Close
 from shared_models import Message
-
-if TYPE_CHECKING:
-    from services.core.protocols.access import CoreAccess
 
 __all__ = ["ClientSession", "Reading", "incoming"]
 
@@ -76,6 +74,14 @@ class Reading:
 
 class ClientSession:
     """One protocol connection's readings, publications and calls (see the module docstring)."""
+
+    @classmethod
+    def open(cls, access: CoreAccess, websocket: WebSocket, protocol: str) -> ClientSession:
+        """A new connection of ``protocol`` ("rosbridge", "foxglove"), shown in the graph as
+        ``/PROTOCOL_client_N``."""
+        peer = f"{websocket.client.host}:{websocket.client.port}" if websocket.client else "?"
+        guest = access.guests.add(f"/{protocol}_client", client=f"{protocol} client {peer}", numbered=True)
+        return cls(access, websocket, guest)
 
     def __init__(self, access: CoreAccess, websocket: WebSocket, guest: Guest) -> None:
         self.access = access
