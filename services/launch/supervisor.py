@@ -3,9 +3,11 @@
     spec = load_launch_file(default_launch_file())
     exit_code = asyncio.run(Supervisor(spec, LaunchOptions(base_port=9000)).run())
 
-The core starts first and must answer ``GET /health`` with 200; then every other node starts at
-once, as roslaunch starts them (each waits for what it needs: the core, a service, a topic), and
-the launch is up when each answers ``/health``; their ready lines come in launch order. Every child runs in its own session (its own
+Every node starts at once, the core with them, as roslaunch starts its nodes (each waits for what
+it needs: the core, a service, a topic; a node waits for a core starting beside it without
+saying so); the launch is up when each answers ``GET /health`` with 200, and their ready lines
+come in launch order. A launch with ROS 1 parameters (a roslaunch file's ``<param>``) starts its
+core first and sets them on the core's parameter server before the other nodes start. Every child runs in its own session (its own
 process group), so stopping a node kills whatever it started too, and a Ctrl-C in the terminal
 reaches only the supervisor, which then stops the nodes in reverse order: SIGTERM to the group,
 up to ``stop_timeout_s`` to exit, then SIGKILL. Children's output lines are forwarded with a
@@ -23,7 +25,7 @@ import signal
 import sys
 import time
 from collections import deque
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, TextIO
 
@@ -161,8 +163,8 @@ class Supervisor:
     # -- public ---------------------------------------------------------------------------------
 
     async def start(self) -> None:
-        """Start the core, then every other node together, and wait until each is ready;
-        respawning starts now.
+        """Start every node (the core first, if there are parameters to set on it) and wait until
+        each is ready; respawning starts now.
 
         Raises ``LaunchError`` (after stopping what did start) if a port is taken or a node
         does not become ready in time on its first start. Returns early if a stop is requested.
@@ -177,14 +179,16 @@ class Supervisor:
                 self._http = HttpClient()
                 self._announce()
                 children = list(self._children.values())
-                for child in (child for child in children if child.plan.is_core):
+                if self._parameters:  # roslaunch's <param>s: on the core's server before any node starts
+                    for child in (child for child in children if child.plan.is_core):
+                        if self._stopping:
+                            return
+                        await self._start_first(child)
                     if self._stopping:
                         return
-                    await self._start_first(child)
-                if self._stopping:
-                    return
-                await self._set_parameters()  # before any other node starts (roslaunch's <param>s)
-                await self._start_together([child for child in children if not child.plan.is_core])
+                    await self._set_parameters()
+                    children = [child for child in children if not child.plan.is_core]
+                await self._start_together(children)
             finally:
                 self._start_idle.set()
         except BaseException:
@@ -329,14 +333,16 @@ class Supervisor:
     async def _start_together(self, children: list[_Child]) -> None:
         """Start ``children`` at once and wait until each is ready (on two cores the launch is up
         in about half the time one after the other takes: a node's start is mostly its imports).
-        A node is ready (and watched) as soon as it answers; its ready line waits for those of
-        the nodes before it, so they read in launch order. The launch's own node starts last:
-        its imports would take CPU from the nodes starting (`skydeck node kill` needs it only
-        once they are up)."""
+        A node started beside the core waits for it quietly while it starts. A node is ready (and
+        watched) as soon as it answers; its ready line waits for those of the nodes before it, so
+        they read in launch order. The launch's own node starts last: its imports would take CPU
+        from the nodes starting (`skydeck node kill` needs it only once they are up)."""
+        core = next((child.plan for child in children if child.plan.is_core), None)
+        beside_core = {} if core is None else {"SKYDECK_CORE_START_GRACE_S": f"{core.ready_timeout_s:g}"}
         for child in children:
             if self._stopping:
                 return
-            await self._spawn(child)
+            await self._spawn(child, {} if child.plan.is_core else beside_core)
         lines: list[str | None] = [None] * len(children)
         said = 0
 
@@ -381,10 +387,16 @@ class Supervisor:
                 stderr_tail=tuple(child.stderr_tail),
             )
 
-    async def _spawn(self, child: _Child) -> None:
+    async def _spawn(self, child: _Child, extra_env: Mapping[str, str] | None = None) -> None:
         plan = child.plan
         argv = [str(part) for part in self._command_for(plan)]
-        env = {**self._settings.environment, "SKYDECK_CORE_URL": self.core_url, "PYTHONUNBUFFERED": "1", **plan.env}
+        env = {
+            **self._settings.environment,
+            "SKYDECK_CORE_URL": self.core_url,
+            "PYTHONUNBUFFERED": "1",
+            **(extra_env or {}),
+            **plan.env,
+        }
         prefix = f"[{plan.name}] "
 
         def on_line(text: str, is_stderr: bool) -> None:

@@ -86,5 +86,7 @@ async def test_launch_prints_what_to_open_and_a_command_that_works_in_a_new_term
         listed = await asyncio.to_thread(_in_new_terminal, command)
         assert listed.returncode == 0, listed.stderr
         assert "/scan" in listed.stdout.split() and "/cmd_vel" in listed.stdout.split(), listed.stdout
+        # started with the core, the simulator waited for it without a word
+        assert not [line for line in launch.lines if "waiting for core" in line], launch.tail()
     finally:
         assert await asyncio.to_thread(launch.stop, signal.SIGINT, 30)
