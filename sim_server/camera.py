@@ -1,4 +1,5 @@
-"""Cameras: the view from behind and above the drone, or from any eye, as raw RGB or a JPEG.
+"""Cameras: the view from any eye in a world, as raw RGB or a JPEG (each world says where its
+camera stands: the drone's chase view, the robot's forward view).
 
 Uses PyBullet's software renderer (ER_TINY_RENDERER), so it works headless, and Pillow to
 encode. It is the camera's whole cost: tens of milliseconds at 320x240, about a hundred at
@@ -9,18 +10,12 @@ a video rate, only while someone watches, never every step.
 from __future__ import annotations
 
 import io
-import math
 
 import numpy as np
 import pybullet as p
-from PIL import Image
 
-from sim_server.world import World, yaw_of
+__all__ = ["View", "encode_jpeg", "render_rgb", "render_view_jpeg"]
 
-__all__ = ["View", "chase_view", "encode_jpeg", "render_jpeg", "render_rgb", "render_view_jpeg"]
-
-_CHASE_DISTANCE_M = 6.0
-_CHASE_HEIGHT_M = 3.0
 _FIELD_OF_VIEW_DEG = 60.0
 _NEAR_M = 0.1
 _FAR_M = 120.0
@@ -36,14 +31,6 @@ class View:
 
     def __init__(self, eye: Vector, target: Vector, *, near_m: float = _NEAR_M, far_m: float = _FAR_M) -> None:
         self.eye, self.target, self.near_m, self.far_m = eye, target, near_m, far_m
-
-
-def chase_view(world: World) -> View:
-    """Behind and above the drone, looking at it."""
-    (x, y, z), orientation = world.drone_pose()
-    yaw = yaw_of(orientation)
-    eye = (x - _CHASE_DISTANCE_M * math.cos(yaw), y - _CHASE_DISTANCE_M * math.sin(yaw), z + _CHASE_HEIGHT_M)
-    return View(eye, (x, y, z), far_m=_FAR_M)
 
 
 def render_rgb(client: int, view: View, width: int, height: int) -> bytes:
@@ -73,6 +60,8 @@ def encode_jpeg(rgb: bytes, width: int, height: int, quality: int = 70) -> bytes
     """``rgb8`` pixels (as :func:`render_rgb` makes them) as a JPEG."""
     if not 1 <= quality <= 95:
         raise ValueError(f"quality={quality} is outside [1, 95] (Pillow's useful JPEG range)")
+    from PIL import Image  # loaded once someone watches: the simulator starts without it
+
     out = io.BytesIO()
     Image.frombytes("RGB", (width, height), rgb).save(out, format="JPEG", quality=quality)
     return out.getvalue()
@@ -83,14 +72,3 @@ def render_view_jpeg(client: int, view: View, *, width: int = 320, height: int =
     if not 1 <= quality <= 95:  # before the costly render
         raise ValueError(f"quality={quality} is outside [1, 95] (Pillow's useful JPEG range)")
     return encode_jpeg(render_rgb(client, view, width, height), width, height, quality)
-
-
-def render_jpeg(world: World, width: int = 320, height: int = 240, quality: int = 70) -> bytes:
-    """Render the chase view of ``world`` and return it as JPEG bytes.
-
-    Example::
-
-        frame = render_jpeg(world)            # 320x240, quality 70
-        Path("view.jpg").write_bytes(frame)
-    """
-    return render_view_jpeg(world.client, chase_view(world), width=width, height=height, quality=quality)

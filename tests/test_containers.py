@@ -31,7 +31,8 @@ from services.core.settings import CoreSettings
 from services.launch.plan import LaunchOptions, plan_launch
 from services.launch.spec import find_launch_file, load_launch_file
 from services.runtime.ports import free_port_block
-from sim_server.node import SimSettings
+from sim_server.robot.settings import RobotSettings
+from sim_server.settings import SimSettings
 from tests.compose_config import (
     COMPOSE_FILE,
     DOCKERFILE,
@@ -140,7 +141,7 @@ def test_the_robot_worlds_settings_reach_its_simulator() -> None:
     assert sim_env == {"SKYDECK_SIM_SPEED": "max", "SKYDECK_SIM_SEED": "7", "SKYDECK_SIM_ROBOTS": "2",
                        "SKYDECK_SIM_OBSTACLES": "3"}  # fmt: skip
     settings = {key.removeprefix("SKYDECK_SIM_").lower(): value for key, value in sim_env.items()}
-    SimSettings.model_validate({"world": "robot", **settings})  # values the robot world takes
+    RobotSettings.model_validate(settings)  # values the robot world takes
 
 
 # -- both commands, resolved --------------------------------------------------------------------

@@ -62,7 +62,7 @@ from shared_models.ros_workshop import (
 )
 from shared_models.std_msgs import Header
 from shared_models.std_srvs import Trigger, TriggerRequest, TriggerResponse
-from sim_server.limits import ON_GROUND_Z_M, START_XY_M
+from sim_server.drone.limits import ON_GROUND_Z_M, START_XY_M
 
 __all__ = ["AiNode", "AiSettings", "main"]
 

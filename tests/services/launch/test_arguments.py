@@ -90,7 +90,7 @@ def test_a_launch_file_without_arguments_refuses_any(tmp_path: Path) -> None:
         ("arguments: {a: {defualt: 1}}\nnodes: [{name: sim, run: sim, port_offset: 1}]",
          "arguments.a.defualt: unknown field (allowed: default, description)"),
         ('arguments: {a: {}}\nnodes: [{name: sim, run: sim, port_offset: 1, args: ["{b}"]}]',
-         "nodes[0].args[0]: unknown placeholder {b} in '{b}'; known: {speed}, {seed}, {boxes}, {robots}, {base_port}, {a} "
+         "nodes[0].args[0]: unknown placeholder {b} in '{b}'; known: {speed}, {seed}, {boxes}, {robots}, {obstacles}, {base_port}, {a} "
          "(or declare it under `arguments:`)"),
     ],
 )  # fmt: skip
