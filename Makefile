@@ -17,8 +17,11 @@ $(STAMP): requirements.lock pyproject.toml web_ui/vendor/package-lock.json tests
 	cd tests/clients && npm ci --silent --no-audit --no-fund
 	touch $(STAMP)
 
+# The drone workshop, the drone landed and the AI waiting for /ai/start (the dashboard's Start
+# mission button); `make up MISSION=true` starts the AI's mission at once.
+MISSION ?= false
 up: install
-	$(BIN)/skydeck launch
+	$(BIN)/skydeck launch start_mission:=$(MISSION)
 
 # The robot world (the second seed's Neato class): the core and the simulator's room.
 robot: install

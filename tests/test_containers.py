@@ -150,7 +150,7 @@ def test_the_robot_worlds_settings_reach_its_simulator() -> None:
 def test_each_command_starts_what_its_launch_file_starts(
     variant: str, started: dict[str, dict[str, Any]]
 ) -> None:
-    spec = load_launch_file(find_launch_file(LAUNCH_FILE[variant]))
+    spec = load_launch_file(find_launch_file(LAUNCH_FILE[variant]), {})  # the arguments' defaults
     plans = plan_launch(spec, LaunchOptions(seed=1))
     assert set(started) == {plan.name for plan in plans}, "nor the other world's nodes"
     for plan in plans:

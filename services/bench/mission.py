@@ -204,7 +204,7 @@ async def _fly_one(seed: int, boxes: int, state_dir: str) -> dict[str, Any]:
             track = GroundTrack([(p["x"], p["y"]) for p in polygon["points"]])
             async with connect(stream_url(sim, "/drone/pose", queue=10_000), max_size=None) as poses:
                 # The AI starts only now, so the track is read from before its take-off.
-                ai = [*cli, "run", "ai", "--port", str(base + 4), "--use-sim-time"]
+                ai = [*cli, "run", "ai", "--port", str(base + 4), "--use-sim-time", "--start-mission"]
                 processes.append(BackgroundProcess(ai, name="ai", env=env))
                 reader = asyncio.create_task(_read_poses(poses, track))
                 try:

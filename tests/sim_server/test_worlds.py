@@ -81,7 +81,7 @@ def test_each_shipped_world_is_whole(name: str) -> None:
     settings = entry.settings_type()
     assert description.constants and description.topics
     assert set(settings.own_options()) <= set(world_options())
-    spec = load_launch_file(find_launch_file(entry.launch_file))
+    spec = load_launch_file(find_launch_file(entry.launch_file), {})
     (sim,) = [node for node in spec.nodes if node.run == "sim"]
     world_flag = sim.args[sim.args.index("--world") + 1] if "--world" in sim.args else default_world().name
     assert world_flag == name, "the world's launch file starts the world"

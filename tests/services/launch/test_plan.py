@@ -26,7 +26,7 @@ def _spec(*nodes: NodeSpec) -> LaunchSpec:
 
 
 def test_workshop_plan_with_defaults() -> None:
-    plans = plan_launch(load_launch_file(default_launch_file()), LaunchOptions(seed=42))
+    plans = plan_launch(load_launch_file(default_launch_file(), {}), LaunchOptions(seed=42))
     assert [(plan.name, plan.port) for plan in plans] == [
         ("core", 8000),
         ("sim", 8001),
@@ -77,13 +77,13 @@ def test_without_a_core_the_core_url_is_the_base_port() -> None:
 
 
 def test_exclude_drops_nodes() -> None:
-    spec = load_launch_file(default_launch_file())
+    spec = load_launch_file(default_launch_file(), {})
     plans = plan_launch(spec, LaunchOptions(seed=1, exclude=("ai", "perception")))
     assert [plan.name for plan in plans] == ["core", "sim", "control"]
 
 
 def test_exclude_of_an_unknown_node_is_an_error() -> None:
-    spec = load_launch_file(default_launch_file())
+    spec = load_launch_file(default_launch_file(), {})
     with pytest.raises(
         LaunchError,
         match=r"--exclude names 'planner', which the launch file does not have; its nodes are: core, sim,",
@@ -92,7 +92,7 @@ def test_exclude_of_an_unknown_node_is_an_error() -> None:
 
 
 def test_a_base_port_that_pushes_a_node_past_65535() -> None:
-    spec = load_launch_file(default_launch_file())
+    spec = load_launch_file(default_launch_file(), {})
     with pytest.raises(LaunchError, match="puts the last node on port 65537"):
         plan_launch(spec, LaunchOptions(base_port=65533, seed=1))
 
@@ -187,7 +187,7 @@ def test_public_api() -> None:
 
 
 def test_endpoint_ports_reach_the_core_as_its_flags() -> None:
-    spec = load_launch_file(default_launch_file())
+    spec = load_launch_file(default_launch_file(), {})
     core, *nodes = plan_launch(spec, LaunchOptions(seed=1, rosbridge_port=0, foxglove_port=9876))
     assert core.args[-4:] == ("--rosbridge-port", "0", "--foxglove-port", "9876")
     assert core.env == {} and all("--rosbridge-port" not in node.args for node in nodes)

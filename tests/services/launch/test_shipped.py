@@ -56,7 +56,7 @@ def test_a_robot_count_out_of_range_is_refused(robots: int) -> None:
 
 
 def test_an_option_the_launch_file_does_not_use_is_refused() -> None:
-    workshop = load_launch_file(default_launch_file())
+    workshop = load_launch_file(default_launch_file(), {})
     robot = load_launch_file(find_launch_file("robot"))
     with pytest.raises(LaunchError, match=r"--robots 2: this launch file does not use it.*skydeck launch robot"):
         plan_launch(workshop, LaunchOptions(seed=1, world_options={"robots": 2}))
