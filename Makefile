@@ -28,10 +28,13 @@ robot: install
 	$(BIN)/skydeck launch robot
 
 # System packages the tests drive for real: Debian's Chromium (browser tests), the
-# docker-compose tool (validates the compose files without an engine) and zsh (completion).
+# docker-compose tool (validates the compose files without an engine), zsh (completion), and
+# Mesa's EGL and llvmpipe (libegl1, libgl1-mesa-dri: the camera's OpenGL renderer; without them
+# the simulator falls back to PyBullet's, slower, and says so).
 test-deps:
-	@command -v chromium >/dev/null && command -v docker-compose >/dev/null && command -v zsh >/dev/null || \
-		{ apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium docker-compose zsh >/dev/null; }
+	@command -v chromium >/dev/null && command -v docker-compose >/dev/null && command -v zsh >/dev/null \
+		&& ldconfig -p | grep -q 'libEGL.so.1 ' && ls /usr/lib/*/dri/swrast_dri.so >/dev/null 2>&1 || \
+		{ apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium docker-compose zsh libegl1 libgl1-mesa-dri >/dev/null; }
 
 test: install test-deps
 	docker-compose -f docker-compose.yml config --quiet

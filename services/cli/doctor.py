@@ -46,7 +46,7 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
 
 
 def _doctor(args: argparse.Namespace) -> int:
-    checks: list[Callable[[], list[Check]]] = [_python, _venv, _packages, _core_and_clock, _ports, _browser]
+    checks: list[Callable[[], list[Check]]] = [_python, _venv, _packages, _core_and_clock, _ports, _browser, _camera]
     failed = 0
     for check in checks:
         for finding in check():
@@ -159,3 +159,13 @@ def _browser() -> list[Check]:
     if (_REPO / "web_ui").is_dir() and not swagger.is_dir():
         found.append(Check("warn", "Swagger UI missing: /docs has no page", "run `make install` (npm ci in web_ui/vendor)"))
     return found
+
+
+def _camera() -> list[Check]:
+    from sim_server.camera import opengl_status  # PyBullet and OpenGL: loaded for this check only
+
+    why = opengl_status()
+    if why is None:
+        return [Check("ok", "the simulator's camera renders with OpenGL (EGL)")]
+    return [Check("warn", f"the simulator's camera falls back to PyBullet's renderer (slow: 7-10 frames/s at 640x480): {why}",
+                  "apt-get install libegl1 libgl1-mesa-dri")]  # fmt: skip
