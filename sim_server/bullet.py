@@ -65,6 +65,12 @@ class BulletWorld:
         """Physics steps taken since the world was created."""
         return self._steps
 
+    def _check_steps(self, n: int) -> None:
+        """What every world's ``step(n)`` checks first: the world is open and ``n`` is no less than 0."""
+        self._check_open()
+        if n < 0:
+            raise ValueError(f"n={n} must be >= 0")
+
     def _check_open(self) -> None:
         if self._closed:
             name = type(self).__name__

@@ -134,9 +134,7 @@ class World(BulletWorld):
 
     def step(self, n: int = 1) -> None:
         """Advance the world by ``n`` physics steps of 1/240 s."""
-        self._check_open()
-        if n < 0:
-            raise ValueError(f"n={n} must be >= 0")
+        self._check_steps(n)
         # Locals: this loop is the simulator's hot path.
         client = self._client
         drone = self._drone

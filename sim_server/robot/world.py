@@ -163,9 +163,7 @@ class RobotWorld(BulletWorld):
 
     def step(self, n: int = 1) -> None:
         """Advance the world by ``n`` physics steps of 1/PHYSICS_HZ s."""
-        self._check_open()
-        if n < 0:
-            raise ValueError(f"n={n} must be >= 0")
+        self._check_steps(n)
         client = self._client
         step_simulation = p.stepSimulation
         steps = self._steps
