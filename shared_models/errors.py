@@ -6,6 +6,8 @@ launcher and the CLI all descend from one class. The whole tree::
     SkydeckError                          http  close  raised when
     ├── InvalidNameError (ValueError)      404  1008   a topic/service/node name is not a ROS name
     ├── UnknownInterfaceError (LookupError)404  1008   a type name no message or service has
+    ├── DefinitionError (ValueError)       422  1008   a .msg/.srv/.action file cannot be read (file:line)
+    ├── DefinitionConflict (ValueError)    409  1008   another version of a type this process holds
     ├── FrameRejected                       -   its own  a client's frame or option cannot be taken
     ├── NodeError                          500  1011   a node used in a way it cannot honour
     ├── ParameterException                 400   -     a parameter used in a way the node cannot honour
@@ -31,6 +33,9 @@ launcher and the CLI all descend from one class. The whole tree::
     ├── RosParamError                       -    -     ROS 1's parameter server refused or did not answer
     ├── RosFacadeError                      -    -     a ROS program asked for what Skydeck lacks (services/ros/errors.py)
     ├── ROSException, ROSInternalException  -    -     rospy's own (services/ros/rospy/exceptions.py)
+    ├── TransformException                  -    -     tf2's, with its subclasses (services/ros/tf2_ros/exceptions.py)
+    ├── TypeException (TypeError)           -    -     Buffer.transform of an unregistered type (tf2_ros)
+    ├── CvBridgeError (TypeError)           -    -     an image cv_bridge cannot convert (services/ros/cv_bridge/)
     ├── CliError                            -    -     a CLI command the user can fix
     └── BenchError                          -    -     a benchmark could not be measured
 
