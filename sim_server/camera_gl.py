@@ -21,6 +21,8 @@ from typing import Any
 import numpy as np
 import pybullet as p
 
+from shared_models.errors import SkydeckError
+
 __all__ = ["GlRenderer", "GlUnavailable", "open_renderer"]
 
 # PyBullet's own renderer's background and light, so both renderers look alike.
@@ -64,7 +66,7 @@ void main() {
 """
 
 
-class GlUnavailable(RuntimeError):
+class GlUnavailable(SkydeckError, RuntimeError):
     """No OpenGL here: moderngl is not installed or no EGL driver could make a context."""
 
 
