@@ -194,7 +194,7 @@ def _default_ports() -> dict[int, str]:
     local = parts.hostname in ("127.0.0.1", "localhost", "::1")
     options = LaunchOptions(seed=0, base_port=parts.port if local and parts.port else DEFAULT_BASE_PORT)
     try:
-        ports = {plan.port: plan.name for plan in plan_launch(load_launch_file(default_launch_file()), options)}
+        ports = {plan.port: plan.name for plan in plan_launch(load_launch_file(default_launch_file(), {}), options)}
     except LaunchError:  # a core so high a launch on its port could not start: the core's alone
         return {options.base_port: "core"}
     ports.update({port: endpoint.name for endpoint, port in options.core_endpoints().items() if port})

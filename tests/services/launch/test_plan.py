@@ -197,7 +197,7 @@ def test_endpoint_ports_reach_the_core_as_its_flags() -> None:
 
 def test_endpoint_ports_move_with_the_base_port_unless_given() -> None:
     """Two launches side by side (issue 32): each core's endpoints move as far as its base port."""
-    spec = load_launch_file(default_launch_file())
+    spec = load_launch_file(default_launch_file(), {})
     first, *_ = plan_launch(spec, LaunchOptions(seed=1, base_port=19340))
     second, *_ = plan_launch(spec, LaunchOptions(seed=1, base_port=19370))
     assert first.args[-4:] == ("--rosbridge-port", "20430", "--foxglove-port", "20105")
@@ -226,7 +226,7 @@ def test_bad_endpoint_ports_are_one_line(options: dict[str, object], says: str) 
 
 
 def test_an_endpoint_moved_past_65535_is_one_line_when_the_launch_starts_a_core() -> None:
-    spec = load_launch_file(default_launch_file())
+    spec = load_launch_file(default_launch_file(), {})
     with pytest.raises(LaunchError, match="--base-port 65000 moves the rosbridge endpoint to port 66090, past 65535"):
         plan_launch(spec, LaunchOptions(seed=1, base_port=65000))
     given = LaunchOptions(seed=1, base_port=65000, endpoint_ports={"rosbridge": 0, "foxglove": 0})
