@@ -36,7 +36,7 @@ export class LogConsole {
     this.socket = new TopicSocket("/rosout", {
       queue: 200,
       onMessage: (msg) => (backlogShown ? this.add(msg) : early.push(msg)),
-    }).open();
+    }).openWhenPublished();
     let backlog = [];
     try {
       backlog = await getJson(`/api/rosout?limit=${BACKLOG_LINES}`);
