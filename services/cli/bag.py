@@ -212,9 +212,9 @@ def _say(line: str) -> None:
 
 def _run(node: Node, keys: Callable[[], contextlib.AbstractContextManager[bool]] | None = None) -> bool:
     """Run ``node`` until it stops by itself or Ctrl-C / SIGTERM asks; True if a signal did."""
-    import logging
+    from services.runtime.executor import configure_logging
 
-    logging.basicConfig(level=logging.WARNING, format="[%(levelname)s] [%(name)s] %(message)s")
+    configure_logging("WARNING")
     interrupted = False
 
     async def main() -> None:

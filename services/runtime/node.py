@@ -358,6 +358,7 @@ class Node(ParametersMixin):
             stats=self._participant.published_counts,
             on_publishers=self._participant.set_publishers,
             token=self.settings.token,
+            quiet_s=self.settings.core_start_grace_s,
         )
         self._spawn(self._session.run())
         for subscription in self._subscriptions:
