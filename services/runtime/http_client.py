@@ -31,14 +31,14 @@ import logging
 import time
 from collections.abc import Callable, Coroutine, Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Protocol, TypeVar
 from urllib.parse import urlsplit
 
 import httptools
 
 from shared_models.errors import SkydeckError
 
-__all__ = ["HttpClient", "HttpError", "HttpReply", "HttpTimeout", "HttpUnreachable", "Outcome"]
+__all__ = ["Cancellable", "HttpClient", "HttpError", "HttpReply", "HttpTimeout", "HttpUnreachable", "Outcome", "outcome_of"]
 
 # uvicorn closes a keep-alive connection after 5 idle seconds; reusing one older than this
 # would race that close.
@@ -79,6 +79,35 @@ class HttpReply:
 Outcome = HttpReply | HttpError
 """What a request came to: the reply (of any status), or why none came."""
 
+T = TypeVar("T")
+
+
+class Cancellable(Protocol):
+    """An operation under way that its caller may give up (an exchange, a task)."""
+
+    def cancel(self) -> object: ...
+
+
+async def outcome_of(start: Callable[[Callable[[T], None]], Cancellable | None]) -> T:
+    """The outcome a callback-form operation hands its callback, awaited.
+
+    ``start(on_done)`` begins the operation; ``on_done`` may be called at once or later, and only
+    the first outcome counts. Cancelled while waiting, the operation is cancelled too.
+    """
+    future: asyncio.Future[T] = asyncio.get_running_loop().create_future()
+
+    def done(outcome: T) -> None:
+        if not future.done():
+            future.set_result(outcome)
+
+    operation = start(done)
+    try:
+        return await future
+    except BaseException:  # cancelled while the operation was out
+        if operation is not None:
+            operation.cancel()
+        raise
+
 
 class _Connection(asyncio.Protocol):
     """One keep-alive connection; parses one reply at a time and hands it on from its I/O callback."""
@@ -98,7 +127,7 @@ class _Connection(asyncio.Protocol):
         self._headers: dict[str, str] = {}
         self._body: list[bytes] = []
         self._size = 0
-        self._on_done: Callable[[Outcome], None] | None = None  # while a request awaits its reply
+        self._on_done: Callable[[_Connection, Outcome], None] | None = None  # while a request awaits its reply
         self._closed = False
 
     # -- asyncio.Protocol -------------------------------------------------------------------
@@ -150,11 +179,10 @@ class _Connection(asyncio.Protocol):
             and time.monotonic() - self.idle_since < _MAX_IDLE_S
         )
 
-    def send(self, request: bytes, timeout_s: float, on_done: Callable[[Outcome], None]) -> None:
+    def send(self, request: bytes, timeout_s: float, on_done: Callable[[_Connection, Outcome], None]) -> None:
         """Write ``request``; ``on_done`` gets its reply, or :class:`HttpTimeout` if no whole reply
         comes within ``timeout_s``, or :class:`HttpUnreachable`."""
-        assert self.transport is not None  # the parser goes on from the last reply (keep-alive)
-        self._headers = {}
+        self._headers = {}  # the parser goes on from the last reply (keep-alive)
         self._body = []
         self._size = 0
         self.received_any = False
@@ -162,6 +190,9 @@ class _Connection(asyncio.Protocol):
         self._deadline = self._loop.time() + max(timeout_s, 0.0)
         if self._timer is None or self._timer.when() > self._deadline:
             self._arm_timer()
+        if self.transport is None:  # only connected ones are pooled or made: said, should it happen
+            self._fail(HttpUnreachable("the connection was never made"))
+            return
         self.transport.write(request)
 
     def close(self) -> None:
@@ -195,7 +226,7 @@ class _Connection(asyncio.Protocol):
     def _finish(self, outcome: Outcome) -> None:
         on_done, self._on_done = self._on_done, None
         if on_done is not None:
-            on_done(outcome)  # an _Exchange's, which guards its caller's callback
+            on_done(self, outcome)  # an _Exchange's, which guards its caller's callback
 
 
 class _Exchange:
@@ -234,8 +265,8 @@ class _Exchange:
         else:
             self._send_on(connection, reused=True)
 
-    def abort(self) -> None:
-        """The caller gave up (cancelled): a reply that still comes has nowhere to go."""
+    def cancel(self) -> None:
+        """The caller gave up: a reply that still comes has nowhere to go."""
         self._on_done = _ignore
         if self._connecting is not None:
             self._connecting.cancel()
@@ -262,9 +293,7 @@ class _Exchange:
         self._reused = reused
         connection.send(self._request, self._deadline - time.monotonic(), self._done)
 
-    def _done(self, outcome: Outcome) -> None:
-        connection = self._connection
-        assert connection is not None
+    def _done(self, connection: _Connection, outcome: Outcome) -> None:
         self._connection = None
         if isinstance(outcome, HttpReply):
             self._client._keep(self._origin, connection)
@@ -317,21 +346,12 @@ class HttpClient:
         headers: Mapping[str, str] | None = None,
     ) -> HttpReply:
         """Send one request and return the whole reply (any status)."""
-        outcome: asyncio.Future[Outcome] = asyncio.get_running_loop().create_future()
-
-        def done(result: Outcome) -> None:
-            if not outcome.done():
-                outcome.set_result(result)
-
-        exchange = self.start(method, url, body, timeout_s=timeout_s, headers=headers, on_done=done)
-        try:
-            result = await outcome
-        except BaseException:  # cancelled while the request was out
-            exchange.abort()
-            raise
-        if isinstance(result, HttpError):
-            raise result
-        return result
+        outcome: Outcome = await outcome_of(
+            lambda on_done: self.start(method, url, body, timeout_s=timeout_s, headers=headers, on_done=on_done)
+        )
+        if isinstance(outcome, HttpError):
+            raise outcome
+        return outcome
 
     def start(
         self,
