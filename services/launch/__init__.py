@@ -17,7 +17,8 @@ from services.launch.plan import (
     default_command,
     plan_launch,
 )
-from services.launch.roslaunch import RosLaunch, RosNode, is_roslaunch_file, load_roslaunch_file
+from services.launch.roslaunch import RosLaunch, RosNode, is_roslaunch_file
+from services.launch.roslaunch_reader import load_roslaunch_file
 from services.launch.run import core_answers, launch_arguments, run_launch
 from services.launch.spec import (
     BUILTIN_RUNS,

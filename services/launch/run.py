@@ -22,7 +22,9 @@ from typing import TextIO
 
 from services.launch.arguments import LaunchArgument
 from services.launch.plan import LaunchOptions
-from services.launch.roslaunch import is_roslaunch_file, load_roslaunch_file
+from services.launch.roslaunch import is_roslaunch_file
+from services.launch.roslaunch_reader import load_roslaunch_file
+from services.launch.roslaunch_xml import declared_arguments
 from services.launch.spec import find_launch_file, load_launch_file
 from services.launch.supervisor import Supervisor
 
@@ -67,8 +69,6 @@ def launch_arguments(path: str | Path | None = None) -> dict[str, LaunchArgument
     file's settable ``<arg>``s. Raises ``LaunchFileError`` as loading it does."""
     file = find_launch_file(path)
     if is_roslaunch_file(file):
-        from services.launch.roslaunch_reader import declared_arguments
-
         return declared_arguments(file)
     return dict(load_launch_file(file).arguments)
 

@@ -24,7 +24,6 @@ from typing import Any
 
 from services.ros.errors import NotProvidedError, not_provided
 from services.ros.rospy.client import (
-    get_published_topics,
     init_node,
     myargv,
     spin,
@@ -51,6 +50,7 @@ from services.ros.rospy.exceptions import (
     ServiceException,
     TransportException,
 )
+from services.ros.rospy.graph import get_published_topics
 from services.ros.rospy.log import (
     DEBUG,
     ERROR,
