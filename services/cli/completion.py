@@ -90,9 +90,7 @@ def _completion(args: argparse.Namespace) -> int:
         except ValueError:
             index = len(words) - 1
         words += [""] * (index + 1 - len(words))  # the shell's $(...) drops a last, empty word
-        from services.cli.main import build_parser
-
-        print("\n".join(candidates(build_parser(), words[1 : index + 1])))
+        print("\n".join(candidates(args.parser, words[1 : index + 1])))
         return 0
     print(_BASH if args.shell == "bash" else _ZSH, end="")
     return 0

@@ -20,6 +20,8 @@ def build_parser() -> argparse.ArgumentParser:
         prog="skydeck",
         description="ROS-style robot software over HTTP and WebSocket. The core is found at SKYDECK_CORE_URL.",
     )
+    # The verbs that need the whole command line (completion's) find it here.
+    parser.set_defaults(parser=parser)
     subparsers = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     run.add_parsers(subparsers)
     for module in (topic, service, node, param, interface, bag, doctor, completion):
