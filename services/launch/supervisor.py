@@ -17,18 +17,23 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-import enum
 import os
 import signal
 import sys
 import time
-from collections import deque
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, TextIO
 
-from services.launch.child_process import ChildProcess, Health, describe_exit, signal_group, spawn
+from services.launch.child_process import Health, describe_exit, signal_group, spawn
 from services.launch.errors import LaunchError
+from services.launch.launched import (
+    BACKOFF_FIRST_S,
+    BACKOFF_MAX_S,
+    BACKOFF_RESET_AFTER_S,
+    LaunchedNode,
+    NodeState,
+    NodeStatus,
+)
 from services.launch.plan import LaunchOptions, NodePlan, core_url, default_command, plan_launch
 from services.launch.spec import LaunchSpec
 from services.runtime.http_client import HttpClient, HttpError
@@ -39,71 +44,13 @@ if TYPE_CHECKING:
     from services.runtime.node import Node
     from shared_models.skydeck_launch import KillNodeResponse
 
-__all__ = ["CommandFor", "NodeState", "NodeStatus", "Supervisor"]
+__all__ = ["CommandFor", "Supervisor"]
 
 CommandFor = Callable[[NodePlan], Sequence[str]]
 """Turns a node's plan into the argv that starts it (``default_command`` runs the skydeck CLI)."""
 
-# -- respawn ------------------------------------------------------------------------------------
-BACKOFF_FIRST_S = 0.5
-BACKOFF_MAX_S = 8.0
-BACKOFF_RESET_AFTER_S = 30.0
-"""A node that ran this long before dying is respawned after the first backoff again."""
 # -- stopping -----------------------------------------------------------------------------------
 STOP_TIMEOUT_S = 5.0
-# -- output -------------------------------------------------------------------------------------
-_STDERR_TAIL_LINES = 20
-
-
-class NodeState(enum.Enum):
-    """Where a node is in its life under the supervisor."""
-
-    WAITING = "waiting"  # not started yet
-    STARTING = "starting"  # running, not answering /health yet
-    READY = "ready"
-    BACKOFF = "backoff"  # died; respawning after a pause
-    EXITED = "exited"  # died and is not respawned
-    KILLED = "killed"  # stopped on request (`skydeck node kill`); not respawned
-    STOPPED = "stopped"  # stopped by the supervisor
-
-
-@dataclass(frozen=True)
-class NodeStatus:
-    """A snapshot of one node: ``ready_count`` counts how often it has become ready."""
-
-    name: str
-    url: str
-    state: NodeState
-    pid: int | None
-    ready_count: int
-    restarts: int
-    exit_code: int | None
-
-
-class _Child:
-    """The supervisor's record of one node and its current process."""
-
-    def __init__(self, plan: NodePlan) -> None:
-        self.plan = plan
-        self.state = NodeState.WAITING
-        self.process: ChildProcess | None = None
-        self.pid: int | None = None
-        self.watch: asyncio.Task[None] | None = None
-        self.started_at = 0.0
-        self.starts = 0
-        self.ready_count = 0
-        self.exit_code: int | None = None
-        self.backoff_s = BACKOFF_FIRST_S
-        self.kill_requested = False
-        self.stderr_tail: deque[str] = deque(maxlen=_STDERR_TAIL_LINES)
-
-    @property
-    def exited(self) -> asyncio.Future[int] | None:
-        return self.process.exited if self.process else None
-
-    @property
-    def running(self) -> bool:
-        return self.process is not None and self.process.running
 
 
 class Supervisor:
@@ -137,7 +84,7 @@ class Supervisor:
         self._command_for = command_for
         self._out = out
         self._stop_timeout_s = stop_timeout_s
-        self._children = {plan.name: _Child(plan) for plan in self.plans}
+        self._children = {plan.name: LaunchedNode(plan) for plan in self.plans}
         self._http: HttpClient | None = None
         self._started = False
         self._stopping = False
@@ -243,16 +190,7 @@ class Supervisor:
 
     def status(self, name: str) -> NodeStatus:
         """A snapshot of node ``name``."""
-        child = self._child(name)
-        return NodeStatus(
-            name=child.plan.name,
-            url=child.plan.url,
-            state=child.state,
-            pid=child.pid if child.running else None,
-            ready_count=child.ready_count,
-            restarts=max(child.starts - 1, 0),
-            exit_code=child.exit_code,
-        )
+        return self._child(name).status()
 
     async def wait_ready(self, name: str, *, count: int = 1) -> NodeStatus:
         """Wait until node ``name`` has become ready ``count`` times in all (1: first start).
@@ -310,7 +248,7 @@ class Supervisor:
         count = len(self._parameters)
         self._say(f"set {count} parameter{'s' if count != 1 else ''} on the core's parameter server")
 
-    async def _start_first(self, child: _Child) -> None:
+    async def _start_first(self, child: LaunchedNode) -> None:
         plan = child.plan
         await self._spawn(child)
         outcome = await self._wait_healthy(child)
@@ -334,7 +272,7 @@ class Supervisor:
                 stderr_tail=tuple(child.stderr_tail),
             )
 
-    async def _spawn(self, child: _Child) -> None:
+    async def _spawn(self, child: LaunchedNode) -> None:
         plan = child.plan
         argv = [str(part) for part in self._command_for(plan)]
         env = {**os.environ, "SKYDECK_CORE_URL": self.core_url, "PYTHONUNBUFFERED": "1", **plan.env}
@@ -354,7 +292,7 @@ class Supervisor:
         child.stderr_tail.clear()
         self._notify()
 
-    async def _wait_healthy(self, child: _Child) -> Health:
+    async def _wait_healthy(self, child: LaunchedNode) -> Health:
         """Poll /health until 200, the process exits, the deadline passes or a stop is asked."""
         if self._http is None or child.process is None:
             raise LaunchError("internal: node polled before it was started")
@@ -362,7 +300,7 @@ class Supervisor:
             self._http, f"{child.plan.url}/health", child.plan.ready_timeout_s, lambda: self._stopping
         )
 
-    def _ready(self, child: _Child) -> None:
+    def _ready(self, child: LaunchedNode) -> None:
         child.state = NodeState.READY
         child.ready_count += 1
         pid = child.pid
@@ -373,7 +311,7 @@ class Supervisor:
 
     # -- respawning ---------------------------------------------------------------------------
 
-    async def _watch(self, child: _Child) -> None:
+    async def _watch(self, child: LaunchedNode) -> None:
         """After a node's first start: respawn it whenever it dies, until the launch stops."""
         plan = child.plan
         while True:
@@ -406,7 +344,7 @@ class Supervisor:
             if not await self._respawn(child):
                 return
 
-    async def _respawn(self, child: _Child) -> bool:
+    async def _respawn(self, child: LaunchedNode) -> bool:
         """Restart the node after its backoff until it is ready; False if the launch stops first."""
         plan = child.plan
         while True:
@@ -467,7 +405,7 @@ class Supervisor:
             message=f"killed {node} (launch node {child.plan.name}, pid {pid}); not respawned",
         )
 
-    async def _child_of_node(self, node: str) -> tuple[_Child | None, bool]:
+    async def _child_of_node(self, node: str) -> tuple[LaunchedNode | None, bool]:
         """The child whose process registered ``node`` (matched by pid), else one named so; and
         whether the graph has ``node`` (if the core could be asked, else assumed; it matters
         only when no child is found)."""
@@ -493,7 +431,7 @@ class Supervisor:
 
     # -- stopping -----------------------------------------------------------------------------
 
-    async def _terminate(self, child: _Child, *, report: bool = False) -> None:
+    async def _terminate(self, child: LaunchedNode, *, report: bool = False) -> None:
         """SIGTERM the node's process group, SIGKILL it after the stop timeout; then reap."""
         process = child.process
         if process is None:
@@ -509,7 +447,7 @@ class Supervisor:
         if was_running and report:
             self._say(f"{child.plan.name} stopped ({describe_exit(code)})")
 
-    async def _reap(self, child: _Child) -> int:
+    async def _reap(self, child: LaunchedNode) -> int:
         """The exit code of the node's finished process (see ChildProcess.reap)."""
         if child.process is None:
             raise LaunchError("internal: reaping a node that never started")
@@ -540,7 +478,7 @@ class Supervisor:
 
     # -- helpers ------------------------------------------------------------------------------
 
-    def _child(self, name: str) -> _Child:
+    def _child(self, name: str) -> LaunchedNode:
         try:
             return self._children[name]
         except KeyError:
