@@ -37,7 +37,7 @@ test: install test-deps
 
 lint: install
 	$(BIN)/ruff check .
-	$(BIN)/mypy services shared_models sim_server
+	$(BIN)/mypy services shared_models sim_server benchmarks
 
 bench: install
 	$(BIN)/skydeck bench --out bench.json

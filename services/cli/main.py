@@ -31,14 +31,11 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _add_optional(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    # Verbs whose modules pull in heavier dependencies register themselves here.
-    from services.cli import launch
+    # Verbs whose modules pull in heavier dependencies (launch), or run what an installation may
+    # not have (bench: the checkout's benchmarks), register themselves here.
+    from services.cli import bench, launch
 
     launch.add_parser(subparsers)
-    try:
-        from services.cli import bench
-    except ImportError:
-        return
     bench.add_parser(subparsers)
 
 
