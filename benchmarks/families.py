@@ -3,9 +3,11 @@
 
 from __future__ import annotations
 
-from benchmarks import system_families, topic_families, world_families
 from benchmarks.runner import Family
 from benchmarks.suite import Suite
+from benchmarks.system_families import bag, registry, services, startup, viewers
+from benchmarks.topic_families import fanout, latency, rosbridge, throughput, throughput_by_size
+from benchmarks.world_families import flight, mission, robot, rtf_by_boxes, sim
 
 __all__ = ["families"]
 
@@ -13,22 +15,22 @@ __all__ = ["families"]
 def families(suite: Suite, only: set[str] | None = None) -> list[Family]:
     """Every family, or those named in ``only`` (by family name or by one of its rows)."""
     every = [
-        topic_families.throughput(suite),
-        topic_families.latency(suite),
-        topic_families.fanout(suite),
-        system_families.services(suite),
-        world_families.sim(suite),
-        world_families.robot(suite),
-        world_families.mission(suite),
-        world_families.flight(suite),
-        system_families.startup(suite),
-        system_families.registry(suite),
-        system_families.viewers(suite),
-        topic_families.rosbridge(suite),
-        system_families.bag(suite),
+        throughput(suite),
+        latency(suite),
+        fanout(suite),
+        services(suite),
+        sim(suite),
+        robot(suite),
+        mission(suite),
+        flight(suite),
+        startup(suite),
+        registry(suite),
+        viewers(suite),
+        rosbridge(suite),
+        bag(suite),
     ]
     if suite.plots:
-        every += [topic_families.throughput_by_size(suite), world_families.rtf_by_boxes(suite)]
+        every += [throughput_by_size(suite), rtf_by_boxes(suite)]
     if only:
         every = [f for f in every if f.name in only or only.intersection(f.rows)]
     return every
