@@ -10,6 +10,7 @@ import time
 from services.cli.arguments import node_name, positive_float, positive_int
 from services.cli.core_client import auth_headers, error_detail, get_json, post_json
 from services.cli.errors import CliError
+from services.cli.graph import lookup
 
 __all__ = ["add_parser"]
 
@@ -40,7 +41,7 @@ def _list(args: argparse.Namespace) -> int:
 
 def _info(args: argparse.Namespace) -> int:
     name = node_name(args.node)
-    node = get_json(f"/api/nodes{name}", missing=f"unknown node {name}: see `skydeck node list`")
+    node = lookup("node", name)
     graph = get_json("/api/graph")
     types = {t["name"]: t["type"] for t in graph["topics"]}
     types.update({s["name"]: s["type"] for s in graph["services"]})
@@ -57,15 +58,11 @@ def _info(args: argparse.Namespace) -> int:
     return 0
 
 
-def _lookup(name: str) -> dict:  # type: ignore[type-arg]
-    return get_json(f"/api/nodes{name}", missing=f"unknown node {name}: see `skydeck node list`")  # type: ignore[no-any-return]
-
-
 def _ping(args: argparse.Namespace) -> int:
     import httpx
 
     name = node_name(args.node)
-    url = _lookup(name)["url"].rstrip("/")
+    url = lookup("node", name)["url"].rstrip("/")
     print(f"pinging {name} with a timeout of {args.timeout:g}s", flush=True)
     failed = 0
     for attempt in range(args.count):
@@ -94,7 +91,7 @@ def _kill(args: argparse.Namespace) -> int:
     from shared_models.skydeck_launch import KillNodeResponse
 
     name = node_name(args.node)
-    node = _lookup(name)
+    node = lookup("node", name)
     if name in ("/skydeck_core", LAUNCH_NODE):
         raise CliError(f"{name} is part of Skydeck itself: stop the core or the launch with Ctrl-C")
     services = {service["name"] for service in get_json("/api/graph")["services"]}

@@ -14,6 +14,7 @@ from services.cli.arguments import known_type, positive_float, positive_int, ros
 from services.cli.core_client import auth_headers, core_url, get_json, ws_url
 from services.cli.errors import CliError
 from services.cli.formatting import message_view, parse_data, to_csv, to_yaml
+from services.cli.graph import add_lookup_verbs, lookup
 from services.cli.streams import frames, warn_if_unpublished
 from services.cli.topic_stats import add_stats_parsers
 from shared_models.close_codes import Close
@@ -30,17 +31,13 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.add_argument("-v", "--verbose", action="store_true", help="show publisher and subscriber counts")
     p.set_defaults(func=_list)
 
-    p = verbs.add_parser("info", help="type, publishers, subscribers and rate of a topic")
-    p.add_argument("topic")
-    p.set_defaults(func=_info)
-
-    p = verbs.add_parser("type", help="the type of a topic")
-    p.add_argument("topic")
-    p.set_defaults(func=_type)
-
-    p = verbs.add_parser("find", help="the topics of a type")
-    p.add_argument("type", help="e.g. geometry_msgs/msg/PoseStamped")
-    p.set_defaults(func=_find)
+    add_lookup_verbs(
+        verbs,
+        "topic",
+        info_help="type, publishers, subscribers and rate of a topic",
+        info=_info,
+        example_type="geometry_msgs/msg/PoseStamped",
+    )
 
     p = verbs.add_parser("echo", help="print the messages of a topic")
     p.add_argument("topic")
@@ -81,7 +78,7 @@ def _list(args: argparse.Namespace) -> int:
 
 def _info(args: argparse.Namespace) -> int:
     name = ros_name(args.topic)
-    topic = get_json(f"/api/topics{name}", missing=f"unknown topic {name}: see `skydeck topic list`")
+    topic = lookup("topic", name)
     graph = get_json("/api/graph")
     urls = {node["name"]: node["url"] for node in graph["nodes"]}
     print(f"Type: {topic['type']}")
@@ -93,25 +90,6 @@ def _info(args: argparse.Namespace) -> int:
             print(" None")
         for node in topic[key]:
             print(f" * {node} ({urls.get(node, '?')})")
-    return 0
-
-
-def _type(args: argparse.Namespace) -> int:
-    name = ros_name(args.topic)
-    topic = get_json(f"/api/topics{name}", missing=f"unknown topic {name}: see `skydeck topic list`")
-    print(topic["type"])
-    return 0
-
-
-def _find(args: argparse.Namespace) -> int:
-    from shared_models import Message
-
-    type_name = known_type(args.type).__ros_type__  # an unknown name is an error, not "none found"
-    if not issubclass(known_type(args.type), Message):
-        raise CliError(f"{type_name} is a service type: use `skydeck service find`")
-    for topic in get_json("/api/graph")["topics"]:
-        if topic["type"] == type_name:
-            print(topic["name"])
     return 0
 
 
