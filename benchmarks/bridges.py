@@ -11,7 +11,7 @@ from __future__ import annotations
 from typing import Any
 
 from benchmarks.processes import BenchError, Worker, worker_env
-from benchmarks.topics import CoreHolder
+from benchmarks.topics import CoreHolder, pair_results
 
 __all__ = ["ROSBRIDGE_RTT_MS", "run_bridge_rtt", "run_bridge_throughput"]
 
@@ -38,11 +38,7 @@ def run_bridge_throughput(via: str, core: CoreHolder, *, duration_s: float) -> d
                      "--duration", str(duration_s), env=env)  # fmt: skip
         workers.append(pub)
         pub.expect("READY", _READY_TIMEOUT_S)
-        published = pub.expect("RESULT", duration_s + 30.0)
-        sub.send("stop")
-        received = sub.expect("RESULT", 10.0)
-        if received["counted"] < 2:
-            raise BenchError(f"the {via} client received {received['received']} messages")
+        published, received = pair_results(pub, sub, duration_s, what=f"the {via} client")
         return {**received, "publisher_rate": published["rate"], "delivered": received["received"] / published["sent"]}
     finally:
         for worker in reversed(workers):

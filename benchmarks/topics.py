@@ -15,7 +15,7 @@ from typing import Any
 
 from benchmarks.processes import BenchError, Worker, start_core, worker_env
 
-__all__ = ["TRANSPORTS", "TopicRun", "run_topic_pair"]
+__all__ = ["TRANSPORTS", "TopicRun", "pair_results", "run_topic_pair"]
 
 TRANSPORTS = ("skydeck", "websockets", "zenoh")
 _MODULES = {
@@ -101,12 +101,19 @@ def run_topic_pair(
             pub = Worker(f"{transport}-pub", module, "pub", *flags, *port_flags, env=env)
             workers.append(pub)
             pub.expect("READY", _READY_TIMEOUT_S)
-        published = pub.expect("RESULT", duration_s + 30.0)
-        sub.send("stop")
-        received = sub.expect("RESULT", 10.0)
-        if received["counted"] < 2:
-            raise BenchError(f"{transport} subscriber received {received['received']} messages")
+        published, received = pair_results(pub, sub, duration_s, what=f"{transport} subscriber")
         return TopicRun(received, published)
     finally:
         for worker in reversed(workers):
             worker.stop()
+
+
+def pair_results(publisher: Worker, subscriber: Worker, duration_s: float, *, what: str) -> tuple[dict[str, Any], dict[str, Any]]:
+    """A throughput pair's readings once the publisher is done: what it sent, and what the
+    subscriber (``what``, for the error) received; BenchError when it received nearly nothing."""
+    published = publisher.expect("RESULT", duration_s + 30.0)
+    subscriber.send("stop")
+    received = subscriber.expect("RESULT", 10.0)
+    if received["counted"] < 2:
+        raise BenchError(f"{what} received {received['received']} messages")
+    return published, received

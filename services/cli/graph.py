@@ -1,5 +1,5 @@
-"""What the graph verbs share (``topic``, ``service``, ``node``): one entity by name, and the
-lookup verbs of topics and services (``info``, ``type``, ``find``), registered alike."""
+"""What the graph verbs share (``topic``, ``service``, ``node``): one entity by name, ``info``'s
+lists, and the verbs topics and services have alike (``list``, ``info``, ``type``, ``find``)."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ from services.cli.arguments import known_type, ros_name
 from services.cli.core_client import get_json
 from services.cli.errors import CliError
 
-__all__ = ["add_lookup_verbs", "lookup"]
+__all__ = ["add_graph_verbs", "lookup", "print_sections"]
 
 Noun = Literal["topic", "service", "node"]
 Handler = Callable[[argparse.Namespace], int]
@@ -23,15 +23,43 @@ def lookup(noun: Noun, name: str) -> dict[str, Any]:
     return get_json(f"/api/{noun}s{name}", missing=f"unknown {noun} {name}: see `skydeck {noun} list`")  # type: ignore[no-any-return]
 
 
-def add_lookup_verbs(
+def print_sections(record: dict[str, Any], sections: tuple[tuple[str, str], ...], describe: Callable[[str], str]) -> None:
+    """``info``'s lists, as rosnode and rostopic print them: each section's title, then each entry
+    with what ``describe`` says of it, or ``None``."""
+    for title, key in sections:
+        print(f"\n{title}:")
+        if not record[key]:
+            print(" None")
+        for entry in record[key]:
+            print(f" * {entry} {describe(entry)}")
+
+
+def _print_list(noun: Literal["topic", "service"], show_types: bool, verbose: bool) -> int:
+    for entity in get_json("/api/graph")[noun + "s"]:
+        line = entity["name"]
+        if show_types:
+            line += f" [{entity['type']}]"
+        if verbose:
+            line += f" {len(entity['publishers'])} publisher(s), {len(entity['subscribers'])} subscriber(s)"
+        print(line)
+    return 0
+
+
+def add_graph_verbs(
     verbs: argparse._SubParsersAction[argparse.ArgumentParser],
     noun: Literal["topic", "service"],
     *,
     info_help: str,
     info: Handler,
     example_type: str,
-) -> None:
-    """``NOUN info NAME`` (``info``), ``NOUN type NAME`` and ``NOUN find TYPE``."""
+) -> argparse.ArgumentParser:
+    """``NOUN list [-t]``, ``NOUN info NAME`` (``info``), ``NOUN type NAME`` and ``NOUN find
+    TYPE``; returns ``list``'s parser (a ``-v`` added there counts a topic's publishers and
+    subscribers)."""
+    listing = verbs.add_parser("list", help=f"list the {noun}s of the running system")
+    listing.add_argument("-t", "--show-types", action="store_true", help=f"show each {noun}'s type")
+    listing.set_defaults(func=lambda args: _print_list(noun, args.show_types, getattr(args, "verbose", False)))
+
     p = verbs.add_parser("info", help=info_help)
     p.add_argument(noun)
     p.set_defaults(func=info)
@@ -43,6 +71,7 @@ def add_lookup_verbs(
     p = verbs.add_parser("find", help=f"the {noun}s of a type")
     p.add_argument("type", help=f"e.g. {example_type}")
     p.set_defaults(func=lambda args: _print_names_of_type(noun, args.type))
+    return listing
 
 
 def _print_type(noun: Literal["topic", "service"], name: str) -> int:

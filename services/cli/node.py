@@ -10,7 +10,7 @@ import time
 from services.cli.arguments import node_name, positive_float, positive_int
 from services.cli.core_client import auth_headers, error_detail, get_json, post_json
 from services.cli.errors import CliError
-from services.cli.graph import lookup
+from services.cli.graph import lookup, print_sections
 
 __all__ = ["add_parser"]
 
@@ -49,12 +49,8 @@ def _info(args: argparse.Namespace) -> int:
     print(f"Node [{node['name']}]\nURI: {node['url']}\nPid: {node['pid']}")
     if node.get("client"):  # a client of the core shown as a node (rosbridge, Foxglove)
         print(f"Client: {node['client']}")
-    for title, key in (("Publications", "publications"), ("Subscriptions", "subscriptions"), ("Services", "services")):
-        print(f"\n{title}:")
-        if not node[key]:
-            print(" None")
-        for entity in node[key]:
-            print(f" * {entity} [{types.get(entity, '?')}]")
+    sections = (("Publications", "publications"), ("Subscriptions", "subscriptions"), ("Services", "services"))
+    print_sections(node, sections, lambda entity: f"[{types.get(entity, '?')}]")
     return 0
 
 

@@ -5,10 +5,10 @@ from __future__ import annotations
 import argparse
 
 from services.cli.arguments import ros_name
-from services.cli.core_client import error_detail, get_json, post_json
+from services.cli.core_client import error_detail, post_json
 from services.cli.errors import CliError
 from services.cli.formatting import parse_data, to_yaml
-from services.cli.graph import add_lookup_verbs, lookup
+from services.cli.graph import add_graph_verbs, lookup
 
 __all__ = ["add_parser"]
 
@@ -17,11 +17,7 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     service = subparsers.add_parser("service", help="list, inspect and call services")
     verbs = service.add_subparsers(dest="verb", required=True, metavar="VERB")
 
-    p = verbs.add_parser("list", help="list the services of the running system")
-    p.add_argument("-t", "--show-types", action="store_true", help="show each service's type")
-    p.set_defaults(func=_list)
-
-    add_lookup_verbs(
+    add_graph_verbs(
         verbs, "service", info_help="node, URL and type of a service", info=_info, example_type="std_srvs/srv/Trigger"
     )
 
@@ -30,12 +26,6 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.add_argument("data", nargs="?", default="{}", help='e.g. "{x: 5.0, y: -3.0}"')
     p.add_argument("--timeout", type=float, default=15.0, help="seconds to wait for the answer (default 15)")
     p.set_defaults(func=_call)
-
-
-def _list(args: argparse.Namespace) -> int:
-    for service in get_json("/api/graph")["services"]:
-        print(service["name"] + (f" [{service['type']}]" if args.show_types else ""))
-    return 0
 
 
 def _info(args: argparse.Namespace) -> int:

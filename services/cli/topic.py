@@ -14,7 +14,7 @@ from services.cli.arguments import known_type, positive_float, positive_int, ros
 from services.cli.core_client import auth_headers, core_url, get_json, ws_url
 from services.cli.errors import CliError
 from services.cli.formatting import message_view, parse_data, to_csv, to_yaml
-from services.cli.graph import add_lookup_verbs, lookup
+from services.cli.graph import add_graph_verbs, lookup, print_sections
 from services.cli.streams import frames, warn_if_unpublished
 from services.cli.topic_stats import add_stats_parsers
 from shared_models.close_codes import Close
@@ -26,18 +26,14 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     topic = subparsers.add_parser("topic", help="list, inspect, echo and publish topics")
     verbs = topic.add_subparsers(dest="verb", required=True, metavar="VERB")
 
-    p = verbs.add_parser("list", help="list the topics of the running system")
-    p.add_argument("-t", "--show-types", action="store_true", help="show each topic's type")
-    p.add_argument("-v", "--verbose", action="store_true", help="show publisher and subscriber counts")
-    p.set_defaults(func=_list)
-
-    add_lookup_verbs(
+    listing = add_graph_verbs(
         verbs,
         "topic",
         info_help="type, publishers, subscribers and rate of a topic",
         info=_info,
         example_type="geometry_msgs/msg/PoseStamped",
     )
+    listing.add_argument("-v", "--verbose", action="store_true", help="show publisher and subscriber counts")
 
     p = verbs.add_parser("echo", help="print the messages of a topic")
     p.add_argument("topic")
@@ -65,17 +61,6 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.set_defaults(func=_pub)
 
 
-def _list(args: argparse.Namespace) -> int:
-    for topic in get_json("/api/graph")["topics"]:
-        line = topic["name"]
-        if args.show_types:
-            line += f" [{topic['type']}]"
-        if args.verbose:
-            line += f" {len(topic['publishers'])} publisher(s), {len(topic['subscribers'])} subscriber(s)"
-        print(line)
-    return 0
-
-
 def _info(args: argparse.Namespace) -> int:
     name = ros_name(args.topic)
     topic = lookup("topic", name)
@@ -84,12 +69,7 @@ def _info(args: argparse.Namespace) -> int:
     print(f"Type: {topic['type']}")
     if topic.get("rate_hz") is not None:
         print(f"Rate: {topic['rate_hz']:.2f} Hz")
-    for title, key in (("Publishers", "publishers"), ("Subscribers", "subscribers")):
-        print(f"\n{title}:")
-        if not topic[key]:
-            print(" None")
-        for node in topic[key]:
-            print(f" * {node} ({urls.get(node, '?')})")
+    print_sections(topic, (("Publishers", "publishers"), ("Subscribers", "subscribers")), lambda node: f"({urls.get(node, '?')})")
     return 0
 
 
