@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from benchmarks.runner import Family
 from benchmarks.suite import Suite
-from benchmarks.system_families import bag, registry, services, startup, viewers
+from benchmarks.system_families import bag, http_clients, registry, services, startup, viewers
 from benchmarks.topic_families import fanout, latency, rosbridge, throughput, throughput_by_size
 from benchmarks.world_families import flight, mission, robot, rtf_by_boxes, sim
 
@@ -19,6 +19,7 @@ def families(suite: Suite, only: set[str] | None = None) -> list[Family]:
         latency(suite),
         fanout(suite),
         services(suite),
+        http_clients(suite),
         sim(suite),
         robot(suite),
         mission(suite),

@@ -178,3 +178,36 @@ def bag(suite: Suite) -> Family:
 
     return Family("bag", trials, s.bag_repetitions, summarise,
                   rows=("bag_record_kept", "bag_record_throughput", "bag_play_timing_p99"))  # fmt: skip
+
+
+def http_clients(suite: Suite) -> Family:
+    """http_client_cpu_per_call, http_client_one_shot: Skydeck's own HTTP client against httpx."""
+    from benchmarks.http_clients import ClientTargets
+
+    targets = ClientTargets()
+    calls = suite.settings.service_calls
+    trials = [
+        Trial(f"call:{client}", f"{client}, per call", lambda client=client: targets.per_call(client, calls))  # type: ignore[misc]
+        for client in ("internal", "httpx", "httpx-sync")
+    ] + [
+        Trial(f"once:{client}", f"{client}, one call in a fresh process", lambda client=client: targets.one_shot(client))  # type: ignore[misc]
+        for client in ("internal", "httpx")
+    ]  # fmt: skip
+
+    def summarise(readings: Readings) -> list[Result]:
+        cpu = {key.partition(":")[2]: median_of(values, "cpu_us") for key, values in readings.items() if key.startswith("call:")}
+        once = {key.partition(":")[2]: median_of(values, "ms") for key, values in readings.items() if key.startswith("once:")}
+        return [
+            Result("http_client_cpu_per_call", cpu["internal"], "us CPU", "httpx.AsyncClient", cpu["httpx"],
+                   target="- (the client's own CPU per kept-alive POST; why processes use their own)",
+                   samples=[r["cpu_us"] for r in readings["call:internal"]],
+                   detail={"httpx_sync_cpu_us": cpu["httpx-sync"],
+                           "wall_us": {key.partition(":")[2]: median_of(values, "wall_us")
+                                       for key, values in readings.items() if key.startswith("call:")}}),
+            Result("http_client_one_shot", once["internal"], "ms", "httpx", once["httpx"],
+                   target="- (spawn to exit: import, one POST; a CLI command's cost)",
+                   samples=[r["ms"] for r in readings["once:internal"]]),
+        ]  # fmt: skip
+
+    return Family("http_clients", trials, suite.settings.service_repetitions, summarise,
+                  rows=("http_client_cpu_per_call", "http_client_one_shot"), close=targets.close)  # fmt: skip

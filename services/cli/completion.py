@@ -197,12 +197,11 @@ def _launch_arguments(file: str, given: list[str], typed: str) -> list[str]:
 
 def _live(kind: str, typed: str) -> list[str]:
     """Names of the running system (quietly none if the core does not answer at once)."""
-    import httpx
-
-    from services.cli.core_client import auth_headers, core_url
+    from services.cli.core_client import core_url, get
+    from services.runtime.http_client import HttpError
 
     try:
-        graph = httpx.get(core_url() + "/api/graph", headers=auth_headers(), timeout=_GRAPH_TIMEOUT_S).json()
-    except (httpx.HTTPError, ValueError):
+        graph = get(core_url() + "/api/graph", timeout_s=_GRAPH_TIMEOUT_S).json()
+    except (HttpError, ValueError):
         return []
     return sorted(item["name"] for item in graph.get(kind, []) if item["name"].startswith(typed))

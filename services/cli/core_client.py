@@ -2,16 +2,15 @@
 
 from __future__ import annotations
 
+import json
 import os
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from services.cli.errors import CliError
+from services.runtime.http_client import HttpError, HttpReply, HttpTimeout, request_once
 from services.runtime.settings import DEFAULT_CORE_URL
 
-if TYPE_CHECKING:
-    import httpx
-
-__all__ = ["auth_headers", "core_url", "error_detail", "get_json", "post_json", "ws_url"]
+__all__ = ["auth_headers", "core_url", "error_detail", "get", "get_json", "post_json", "ws_url"]
 
 
 def core_url() -> str:
@@ -35,39 +34,44 @@ def ws_url(path: str, **query: Any) -> str:
 
 def _unreachable(error: Exception) -> CliError:
     return CliError(
-        f"cannot reach the core at {core_url()} ({type(error).__name__}): is it running? "
+        f"cannot reach the core at {core_url()} ({error}): is it running? "
         "start it with `skydeck core` (or `make up`), or set SKYDECK_CORE_URL"
     )
 
 
+def get(url: str, *, timeout_s: float) -> HttpReply:
+    """GET ``url`` (a node's or the core's) with the token; HttpError when no reply came."""
+    return request_once("GET", url, timeout_s=timeout_s, headers=auth_headers())
+
+
 def get_json(path: str, *, missing: str | None = None) -> Any:
     """GET ``path`` on the core; a 404 raises CliError(``missing``) when given."""
-    import httpx  # here, not at the top: `skydeck launch` runs all session without it
-
     try:
-        reply = httpx.get(core_url() + path, headers=auth_headers(), timeout=5.0)
-    except httpx.HTTPError as error:
+        reply = get(core_url() + path, timeout_s=5.0)
+    except HttpError as error:
         raise _unreachable(error) from None
-    if reply.status_code == 404 and missing is not None:
+    if reply.status == 404 and missing is not None:
         raise CliError(missing)
-    if reply.status_code != 200:
-        raise CliError(f"the core answered {reply.status_code} for {path}: {error_detail(reply)}")
+    if reply.status != 200:
+        raise CliError(f"the core answered {reply.status} for {path}: {error_detail(reply)}")
     return reply.json()
 
 
-def post_json(path: str, body: Any, *, timeout_s: float) -> httpx.Response:
+def post_json(path: str, body: Any, *, timeout_s: float) -> HttpReply:
     """POST ``body`` as JSON to ``path`` on the core and return the reply, whatever its status."""
-    import httpx
-
     try:
-        return httpx.post(core_url() + path, json=body, headers=auth_headers(), timeout=timeout_s)
-    except httpx.TimeoutException:
+        payload = json.dumps(body, ensure_ascii=False, separators=(",", ":"), allow_nan=False).encode()
+    except (TypeError, ValueError) as error:  # NaN, a YAML date...: JSON cannot carry them
+        raise CliError(f"the request cannot be sent as JSON: {error}") from None
+    try:
+        return request_once("POST", core_url() + path, payload, timeout_s=timeout_s, headers=auth_headers())
+    except HttpTimeout:
         raise CliError(f"no answer from {path} within {timeout_s:g} s (--timeout to wait longer)") from None
-    except httpx.HTTPError as error:
+    except HttpError as error:
         raise _unreachable(error) from None
 
 
-def error_detail(reply: httpx.Response) -> str:
+def error_detail(reply: HttpReply) -> str:
     """What a refusal says: its ``detail``, and for FastAPI's 422 the first bad field."""
     try:
         body = reply.json()

@@ -17,7 +17,8 @@ from dataclasses import dataclass
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
-from services.cli.core_client import auth_headers, core_url
+from services.cli.core_client import core_url, get
+from services.runtime.http_client import HttpError
 
 __all__ = ["add_parser"]
 
@@ -100,21 +101,19 @@ def _packages() -> list[Check]:
 
 
 def _core_and_clock() -> list[Check]:
-    import httpx
-
     url = core_url()
     try:
-        reply = httpx.get(url + "/health", headers=auth_headers(), timeout=3.0)
-    except httpx.HTTPError as error:
+        reply = get(url + "/health", timeout_s=3.0)
+    except HttpError as error:
         return [
             Check(
                 "FAIL",
-                f"core at {url} not reachable ({type(error).__name__})",
+                f"core at {url} not reachable ({error})",
                 "start it with `skydeck core` or `make up`, or set SKYDECK_CORE_URL to where it runs",
             )
         ]
-    if reply.status_code != 200:
-        return [Check("FAIL", f"core at {url} answered {reply.status_code} to /health", "is another server on that port?")]
+    if reply.status != 200:
+        return [Check("FAIL", f"core at {url} answered {reply.status} to /health", "is another server on that port?")]
     nodes = reply.json().get("nodes", "?") if reply.headers.get("content-type", "").startswith("application/json") else "?"
     found = [Check("ok", f"core at {url} answers ({nodes} node(s) registered)")]
     served = reply.headers.get("date")

@@ -37,7 +37,7 @@ def _info(args: argparse.Namespace) -> int:
 def _call(args: argparse.Namespace) -> int:
     name = ros_name(args.service)
     reply = post_json(name, parse_data(args.data), timeout_s=args.timeout)
-    if reply.status_code != 200:
-        raise CliError(f"{name}: {error_detail(reply)} (HTTP {reply.status_code})")
+    if reply.status != 200:
+        raise CliError(f"{name}: {error_detail(reply)} (HTTP {reply.status})")
     print(to_yaml(reply.json()))
     return 0

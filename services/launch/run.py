@@ -13,9 +13,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-import json
 import sys
-import urllib.request
 from collections.abc import Mapping
 from pathlib import Path
 from typing import TextIO
@@ -27,6 +25,7 @@ from services.launch.roslaunch_reader import load_roslaunch_file
 from services.launch.roslaunch_xml import declared_arguments
 from services.launch.spec import find_launch_file, load_launch_file
 from services.launch.supervisor import Supervisor
+from services.runtime.http_client import HttpError, request_once
 
 __all__ = ["core_answers", "launch_arguments", "run_launch"]
 
@@ -76,11 +75,10 @@ def launch_arguments(path: str | Path | None = None) -> dict[str, LaunchArgument
 def core_answers(url: str) -> bool:
     """Whether a Skydeck core answers at ``url`` (a roslaunch file then uses it, as roslaunch
     uses a running roscore)."""
-    opener = urllib.request.build_opener(urllib.request.ProxyHandler({}))  # loopback: never a proxy
     try:
-        with opener.open(f"{url}/health", timeout=_CORE_PROBE_S) as reply:
-            return bool(json.loads(reply.read()).get("node") == "/skydeck_core")
-    except (OSError, ValueError):
+        reply = request_once("GET", f"{url}/health", timeout_s=_CORE_PROBE_S)
+        return reply.status == 200 and bool(reply.json().get("node") == "/skydeck_core")
+    except (HttpError, ValueError, AttributeError):  # no core, or something else answering there
         return False
 
 

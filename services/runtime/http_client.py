@@ -1,12 +1,15 @@
 """The HTTP client Skydeck processes use among themselves: keep-alive HTTP/1.1 over asyncio.
 
-Service calls between nodes, the core's gateway and the launch supervisor's health checks all
-talk plain ``http://`` to other Skydeck processes, on loopback or a container network. httpx did
-this job first; profiling the gateway showed its layers (auth, redirects, cookies, anyio, a
-failed ``import sniffio`` per request) took 60% of the core's CPU per forwarded call. This client
-does only what those calls need: one pooled connection per request in flight, requests written
-in one piece, responses parsed by httptools (llhttp, the parser uvicorn already uses).
-No proxies from the environment either: a loopback call must never go through ``HTTP_PROXY``.
+Service calls between nodes, the core's gateway and the launch supervisor's health checks talk
+plain ``http://`` to other Skydeck processes, on loopback or a container network; the CLI talks
+to a core that may be anywhere (``https://`` behind a TLS proxy: docs/security.md), one request
+at a time (:func:`request_once`). httpx did this job first; profiling the gateway showed its
+layers (auth, redirects, cookies, anyio, a failed ``import sniffio`` per request) took 60% of the
+core's CPU per forwarded call, and its import a quarter of a CLI command's start-up
+(docs/architecture.md has the figures). This client does only what those calls need: one pooled
+connection per request in flight, requests written in one piece, responses parsed by httptools
+(llhttp, the parser uvicorn already uses). No proxies from the environment either: a call to a
+node or a core on the robot's network must never go through ``HTTP_PROXY``.
 
     client = HttpClient()
     reply = await client.request("POST", "http://127.0.0.1:8003/control/take_off", b"{}", timeout_s=5)
@@ -26,19 +29,24 @@ connection, or it broke), both :class:`HttpError`. A reply of any status is a re
 from __future__ import annotations
 
 import asyncio
+import concurrent.futures
 import json
 import logging
+import ssl
 import time
 from collections.abc import Callable, Coroutine, Mapping
 from dataclasses import dataclass
-from typing import Any, Protocol, TypeVar
+from typing import Any, NamedTuple, Protocol, TypeVar
 from urllib.parse import urlsplit
 
 import httptools
 
 from shared_models.errors import SkydeckError
 
-__all__ = ["Cancellable", "HttpClient", "HttpError", "HttpReply", "HttpTimeout", "HttpUnreachable", "Outcome", "outcome_of"]
+__all__ = [
+    "Cancellable", "HttpClient", "HttpError", "HttpReply", "HttpTimeout", "HttpUnreachable", "Outcome", "outcome_of",
+    "request_once",
+]  # fmt: skip
 
 # uvicorn closes a keep-alive connection after 5 idle seconds; reusing one older than this
 # would race that close.
@@ -78,6 +86,14 @@ class HttpReply:
 
 Outcome = HttpReply | HttpError
 """What a request came to: the reply (of any status), or why none came."""
+
+
+class _Origin(NamedTuple):
+    """Where a request goes: connections are pooled per origin."""
+
+    host: str
+    port: int
+    tls: bool  # https://
 
 T = TypeVar("T")
 
@@ -241,7 +257,7 @@ class _Exchange:
     def __init__(
         self,
         client: HttpClient,
-        origin: tuple[str, int],
+        origin: _Origin,
         request: bytes,
         url: str,
         timeout_s: float,
@@ -275,14 +291,17 @@ class _Exchange:
 
     async def _connect(self) -> None:
         loop = asyncio.get_running_loop()
+        origin = self._origin
         try:
             async with asyncio.timeout(self._deadline - time.monotonic()):
-                _, connection = await loop.create_connection(lambda: _Connection(loop), *self._origin)
+                _, connection = await loop.create_connection(
+                    lambda: _Connection(loop), origin.host, origin.port, **self._client._tls_options(origin)
+                )
         except TimeoutError:
             self._deliver(self._timed_out())
             return
-        except OSError as error:
-            where = f"{self._origin[0]}:{self._origin[1]}"
+        except OSError as error:  # ssl.SSLError (a certificate refused) is one
+            where = f"{origin.host}:{origin.port}"
             self._deliver(HttpUnreachable(f"cannot connect to {where}: {error.strerror or error}"))
             return
         self._connecting = None
@@ -319,12 +338,14 @@ def _ignore(outcome: Outcome) -> None:
 
 
 class HttpClient:
-    """Pooled keep-alive HTTP/1.1 to ``http://`` URLs; ``headers`` go with every request."""
+    """Pooled keep-alive HTTP/1.1 to ``http://`` and ``https://`` URLs; ``headers`` go with every
+    request, ``tls`` checks the servers' certificates (default: the system's, as ``ssl`` does)."""
 
-    def __init__(self, headers: Mapping[str, str] | None = None) -> None:
+    def __init__(self, headers: Mapping[str, str] | None = None, *, tls: ssl.SSLContext | None = None) -> None:
+        self._tls = tls  # https://'s, made on first use: the system's certificates (ssl's default)
         self._default_headers = "".join(f"{name}: {value}\r\n" for name, value in (headers or {}).items())
-        self._idle: dict[tuple[str, int], list[_Connection]] = {}
-        self._request_lines: dict[tuple[str, str], tuple[tuple[str, int], str]] = {}
+        self._idle: dict[_Origin, list[_Connection]] = {}
+        self._request_lines: dict[tuple[str, str], tuple[_Origin, str]] = {}
         self._closed = False
         self._tasks: set[asyncio.Task[None]] = set()  # connecting: held here, the loop holds tasks weakly
 
@@ -385,20 +406,27 @@ class HttpClient:
         exchange.start()
         return exchange
 
-    def _request_line(self, method: str, url: str) -> tuple[tuple[str, int], str]:
+    def _request_line(self, method: str, url: str) -> tuple[_Origin, str]:
         """Where ``url`` is, and the request's first lines up to its own headers (kept per URL:
         parsing a URL is a tenth of a forwarded call's work, and the core calls few URLs)."""
         known = self._request_lines.get((method, url))
         if known is None:
             origin, target = _split(url)
-            host = f"[{origin[0]}]" if ":" in origin[0] else origin[0]
-            known = origin, f"{method} {target} HTTP/1.1\r\nHost: {host}:{origin[1]}\r\n{self._default_headers}"
+            host = f"[{origin.host}]" if ":" in origin.host else origin.host
+            known = origin, f"{method} {target} HTTP/1.1\r\nHost: {host}:{origin.port}\r\n{self._default_headers}"
             if len(self._request_lines) >= _MAX_KNOWN_URLS:
                 self._request_lines.clear()
             self._request_lines[(method, url)] = known
         return known
 
-    def _pooled(self, origin: tuple[str, int]) -> _Connection | None:
+    def _tls_options(self, origin: _Origin) -> dict[str, Any]:
+        if not origin.tls:
+            return {}
+        if self._tls is None:
+            self._tls = ssl.create_default_context()
+        return {"ssl": self._tls, "server_hostname": origin.host}
+
+    def _pooled(self, origin: _Origin) -> _Connection | None:
         pool = self._idle.get(origin)
         while pool:
             connection = pool.pop()
@@ -413,7 +441,7 @@ class HttpClient:
         task.add_done_callback(self._tasks.discard)
         return task
 
-    def _keep(self, origin: tuple[str, int], connection: _Connection) -> None:
+    def _keep(self, origin: _Origin, connection: _Connection) -> None:
         if self._closed or not connection.usable:
             connection.close()
             return
@@ -431,11 +459,35 @@ class HttpClient:
         self._idle.clear()
 
 
-def _split(url: str) -> tuple[tuple[str, int], str]:
+def request_once(
+    method: str, url: str, body: bytes | str = b"", *, timeout_s: float, headers: Mapping[str, str] | None = None
+) -> HttpReply:
+    """One request from blocking code (a CLI command, a launch before its loop, a harness polling
+    a process): on a loop and a connection of its own. Raises as ``request``."""
+
+    async def once() -> HttpReply:
+        client = HttpClient()
+        try:
+            return await client.request(method, url, body, timeout_s=timeout_s, headers=headers)
+        finally:
+            await client.aclose()
+
+    try:
+        asyncio.get_running_loop()
+    except RuntimeError:
+        return asyncio.run(once())
+    # Blocking code called from a coroutine (a test's harness): the loop of this thread is busy
+    # until the call returns, as with any blocking call, so the request runs in a thread of its own.
+    with concurrent.futures.ThreadPoolExecutor(1, thread_name_prefix="request_once") as pool:
+        return pool.submit(asyncio.run, once()).result()
+
+
+def _split(url: str) -> tuple[_Origin, str]:
     parts = urlsplit(url)
-    if parts.scheme != "http" or not parts.hostname:
-        raise HttpUnreachable(f"{url}: only http:// URLs are reached by Skydeck's internal client")
+    if parts.scheme not in ("http", "https") or not parts.hostname:
+        raise HttpUnreachable(f"{url}: Skydeck's HTTP client reaches http:// and https:// URLs only")
     target = parts.path or "/"
     if parts.query:
         target += "?" + parts.query
-    return (parts.hostname, parts.port or 80), target
+    tls = parts.scheme == "https"
+    return _Origin(parts.hostname, parts.port or (443 if tls else 80), tls), target
