@@ -50,7 +50,7 @@ _REASONS = {status.value: status.phrase.encode("ascii") for status in HTTPStatus
 _FAULT = ServiceReply(500, b"Internal Server Error", "text/plain; charset=utf-8")
 
 
-class CallsServed(Protocol):
+class _ServesCalls(Protocol):
     """An app whose service calls the protocol forwards (the core's: CoreApp)."""
 
     service_calls: ServiceCalls | None  # None while the core is not running
@@ -89,7 +89,7 @@ class GatewayHttpProtocol(asyncio.Protocol):
         # forward path would make several per call. uvicorn makes protocols in the loop's thread.
         self._loop: asyncio.AbstractEventLoop = _loop or asyncio.get_running_loop()
         app = config.app
-        self._app = cast("CallsServed", app) if hasattr(app, "service_calls") else None
+        self._app = cast("_ServesCalls", app) if hasattr(app, "service_calls") else None
         self._max_bytes: int = getattr(app, "max_message_bytes", 0)
         self._parser = httptools.HttpRequestParser(self)
         self._received: list[bytes] = []  # every byte of the request being read (for a hand-off)
