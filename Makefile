@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: install up robot test test-deps lint bench clean
+.PHONY: install install-vision up robot test test-deps lint bench clean
 
 install: $(STAMP)
 
@@ -16,6 +16,14 @@ $(STAMP): requirements.lock pyproject.toml web_ui/vendor/package-lock.json tests
 	cd web_ui/vendor && npm ci --silent --no-audit --no-fund
 	cd tests/clients && npm ci --silent --no-audit --no-fund
 	touch $(STAMP)
+
+# The vision extra (cv_bridge over OpenCV), apart from the default install as DESIGN.md asks;
+# requirements-vision.lock is pyproject.toml's `vision` extra pinned to requirements.lock.
+install-vision: $(VENV)/.vision-installed
+
+$(VENV)/.vision-installed: $(STAMP) requirements-vision.lock
+	$(BIN)/python -m pip install --quiet --require-hashes --no-deps -r requirements-vision.lock
+	touch $@
 
 up: install
 	$(BIN)/skydeck launch
@@ -30,7 +38,7 @@ test-deps:
 	@command -v chromium >/dev/null && command -v docker-compose >/dev/null && command -v zsh >/dev/null || \
 		{ apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium docker-compose zsh >/dev/null; }
 
-test: install test-deps
+test: install install-vision test-deps
 	docker-compose -f docker-compose.yml config --quiet
 	docker-compose -f docker-compose.yml -f docker-compose.robot.yml config --quiet
 	$(BIN)/python -m pytest -q

@@ -30,6 +30,9 @@ launcher and the CLI all descend from one class. The whole tree::
     ├── RosParamError                       -    -     ROS 1's parameter server refused or did not answer
     ├── RosFacadeError                      -    -     a ROS program asked for what Skydeck lacks (services/ros/errors.py)
     ├── ROSException, ROSInternalException  -    -     rospy's own (services/ros/rospy/exceptions.py)
+    ├── TransformException                  -    -     tf2's, with its subclasses (services/ros/tf2_ros/exceptions.py)
+    ├── TypeException (TypeError)           -    -     Buffer.transform of an unregistered type (tf2_ros)
+    ├── CvBridgeError (TypeError)           -    -     an image cv_bridge cannot convert (services/ros/cv_bridge/)
     ├── CliError                            -    -     a CLI command the user can fix
     └── BenchError                          -    -     a benchmark could not be measured
 

@@ -3,6 +3,7 @@ processes that ``skydeck run`` starts.
 
     rclpy, rclpy.node, ...     -> services.ros.rclpy, services.ros.rclpy.node, ... (the same modules)
     rospy                      -> services.ros.rospy
+    tf2_ros, tf, ...           -> services.ros.tf2_ros, services.ros.tf, ... (FACADES)
     geometry_msgs.msg          -> a view of shared_models.geometry_msgs: its geometry_msgs/msg/* types
     std_srvs.srv               -> its std_srvs/srv/* types, with ROS 1's TriggerRequest/TriggerResponse
                                   and ROS 2's Trigger_Request/Trigger_Response spellings
@@ -32,20 +33,28 @@ from services.ros.errors import (
     UnknownMessagePackageError,
     not_provided,
 )
+from services.ros.extras import EXTRAS, check_extra
 from shared_models._message import Message, ServiceType
 from shared_models.catalogue import MESSAGE_PACKAGES
 
 __all__ = ["FACADES", "RosImportFinder", "message_view"]
 
-# A ROS client library's name -> the façade package that imitates it.
-FACADES = {"rclpy": "services.ros.rclpy", "rospy": "services.ros.rospy"}
+# A ROS Python package's name -> the façade that imitates it.
+FACADES = {
+    "rclpy": "services.ros.rclpy",
+    "rospy": "services.ros.rospy",
+    "cv_bridge": "services.ros.cv_bridge",
+    "tf": "services.ros.tf",  # ROS 1's (tf.transformations, TransformListener, TransformBroadcaster)
+    "tf2_geometry_msgs": "services.ros.tf2_geometry_msgs",
+    "tf2_ros": "services.ros.tf2_ros",
+    "tf_transformations": "services.ros.tf_transformations",
+}
 _KINDS = ("msg", "srv")
 # ROS Python packages a course meets that are not message packages and that Skydeck lacks.
 _NOT_PROVIDED = frozenset(
     {
         "actionlib",
         "ament_index_python",
-        "cv_bridge",
         "image_geometry",
         "image_transport",
         "laser_geometry",
@@ -60,10 +69,6 @@ _NOT_PROVIDED = frozenset(
         "rospkg",
         "rosidl_runtime_py",
         "sensor_msgs_py",
-        "tf",
-        "tf2_geometry_msgs",
-        "tf2_ros",
-        "tf_transformations",
     }
 )
 _PACKAGE_SUFFIXES = ("_msgs", "_srvs", "_interfaces", "_msg", "_srv", "_action")
@@ -161,6 +166,8 @@ class RosImportFinder(importlib.abc.MetaPathFinder):
         self, fullname: str, path: Sequence[str] | None = None, target: types.ModuleType | None = None
     ) -> importlib.machinery.ModuleSpec | None:
         top, _, rest = fullname.partition(".")
+        if top in EXTRAS and not rest:
+            check_extra(top)  # one line if the extra (OpenCV...) is not installed; else on as usual
         if top in FACADES:
             return self._facade_spec(fullname, FACADES[top] + (f".{rest}" if rest else ""))
         if top in MESSAGE_PACKAGES:

@@ -58,6 +58,27 @@ def core() -> Iterator[System]:
     system.stop()
 
 
+@pytest.fixture
+def rclpy(core: System, monkeypatch: pytest.MonkeyPatch) -> Iterator[object]:
+    """Skydeck's rclpy façade in this process, initialised against ``core`` (shut down after)."""
+    from services.ros import rclpy as facade
+
+    monkeypatch.setenv("SKYDECK_CORE_URL", core.url)
+    facade.init(args=[])
+    yield facade
+    facade.shutdown()
+
+
+@pytest.fixture
+def ros_imports() -> Iterator[None]:
+    """ROS's module names importable in this process, as in ``skydeck run``, for the test."""
+    from services.ros import disable_ros_imports, enable_ros_imports
+
+    enable_ros_imports()
+    yield
+    disable_ros_imports()
+
+
 def until(predicate: Callable[[], bool], timeout_s: float = 10.0, what: str = "condition") -> None:
     """Poll ``predicate`` (state changed by another thread) until true; fail after ``timeout_s``."""
     deadline = time.monotonic() + timeout_s

@@ -6,7 +6,6 @@ from __future__ import annotations
 import importlib
 import subprocess
 import sys
-from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -19,14 +18,9 @@ from services.ros.errors import (
 )
 from shared_models import geometry_msgs, rcl_interfaces, ros_workshop, sensor_msgs, std_srvs
 
+pytestmark = pytest.mark.usefixtures("ros_imports")
+
 REPO = Path(__file__).resolve().parents[2]
-
-
-@pytest.fixture(autouse=True)
-def ros_imports() -> Iterator[None]:
-    enable_ros_imports()
-    yield
-    disable_ros_imports()
 
 
 def test_message_views_are_the_shared_models_classes() -> None:
@@ -110,7 +104,7 @@ def test_unknown_type_in_a_known_package() -> None:
     ("module", "message"),
     [
         ("rclpy.action", "`rclpy.action` is a ROS API Skydeck does not provide (yet)"),
-        ("tf2_ros", "`tf2_ros` is a ROS API Skydeck does not provide"),
+        ("message_filters", "`message_filters` is a ROS API Skydeck does not provide"),
         ("geometry_msgs.action", "`geometry_msgs.action` (ROS actions)"),
     ],
 )

@@ -8,7 +8,6 @@ import json
 import threading
 import time
 import urllib.request
-from collections.abc import Iterator
 
 import pytest
 
@@ -18,16 +17,6 @@ from tests.ros.conftest import until
 from tests.web_ui.system import System
 
 pytestmark = [pytest.mark.timeout(60)]
-
-
-@pytest.fixture
-def rclpy(core: System, monkeypatch: pytest.MonkeyPatch) -> Iterator[object]:
-    from services.ros import rclpy as facade
-
-    monkeypatch.setenv("SKYDECK_CORE_URL", core.url)
-    facade.init(args=[])
-    yield facade
-    facade.shutdown()
 
 
 def _spin_in_thread(rclpy, node) -> threading.Thread:  # type: ignore[no-untyped-def]
