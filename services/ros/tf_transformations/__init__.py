@@ -29,7 +29,6 @@ from services.ros.tf_transformations.matrices import (
     identity_matrix,
     inverse_matrix,
     is_same_transform,
-    random_rotation_matrix,
     random_vector,
     rotation_from_matrix,
     rotation_matrix,
@@ -50,6 +49,7 @@ from services.ros.tf_transformations.quaternions import (
     quaternion_real,
     quaternion_slerp,
     random_quaternion,
+    random_rotation_matrix,
 )
 
 __all__ = [
