@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from services.ros.errors import NotProvidedError, not_provided
+from services.ros.errors import not_provided_attributes
 from services.ros.rclpy import (
     callback_groups,
     clock,
@@ -116,7 +116,4 @@ def spin_until_future_complete(
         executor.remove_node(node)
 
 
-def __getattr__(name: str) -> Any:
-    if name in ("action", "lifecycle", "wait_for_message", "type_support", "experimental"):
-        raise NotProvidedError(not_provided(f"rclpy.{name}"))
-    raise AttributeError(f"module 'rclpy' has no attribute {name!r}")
+__getattr__ = not_provided_attributes("rclpy", ("action", "lifecycle", "wait_for_message", "type_support", "experimental"))
