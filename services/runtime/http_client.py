@@ -23,69 +23,40 @@ quarter of its time per call went to those turns and the coroutines around them)
 and a future.
 
 Errors: :class:`HttpTimeout` (no complete reply in time) and :class:`HttpUnreachable` (no
-connection, or it broke), both :class:`HttpError`. A reply of any status is a reply.
+connection, or it broke), both :class:`HttpError`. A reply of any status is a reply. One
+connection and what it yields (replies, errors) are :mod:`services.runtime.http_connection`'s.
 """
 
 from __future__ import annotations
 
 import asyncio
 import concurrent.futures
-import json
 import logging
 import ssl
 import time
 from collections.abc import Callable, Coroutine, Mapping
-from dataclasses import dataclass
 from typing import Any, NamedTuple, Protocol, TypeVar
 from urllib.parse import urlsplit
 
-import httptools
-
-from shared_models.errors import SkydeckError
+from services.runtime.http_connection import (
+    MAX_REPLY_BYTES,
+    Connection,
+    HttpError,
+    HttpReply,
+    HttpTimeout,
+    HttpUnreachable,
+    Outcome,
+)
 
 __all__ = [
-    "Cancellable", "HttpClient", "HttpError", "HttpReply", "HttpTimeout", "HttpUnreachable", "Outcome", "outcome_of",
-    "request_once",
+    "MAX_REPLY_BYTES", "Cancellable", "HttpClient", "HttpError", "HttpReply", "HttpTimeout", "HttpUnreachable",
+    "Outcome", "outcome_of", "request_once",
 ]  # fmt: skip
 
-# uvicorn closes a keep-alive connection after 5 idle seconds; reusing one older than this
-# would race that close.
-_MAX_IDLE_S = 4.0
 _MAX_IDLE_PER_ORIGIN = 8
-MAX_REPLY_BYTES = 64 * 1024 * 1024
 _MAX_KNOWN_URLS = 1024
 
 logger = logging.getLogger("skydeck.runtime")
-
-
-class HttpError(SkydeckError):
-    """A request that got no reply."""
-
-
-class HttpTimeout(HttpError):
-    """No complete reply within the timeout."""
-
-
-class HttpUnreachable(HttpError):
-    """The server could not be reached, or the connection broke before the reply."""
-
-
-@dataclass(frozen=True, slots=True)
-class HttpReply:
-    status: int
-    headers: dict[str, str]  # lower-case names
-    body: bytes
-
-    @property
-    def text(self) -> str:
-        return self.body.decode("utf-8", errors="replace")
-
-    def json(self) -> Any:
-        return json.loads(self.body)
-
-
-Outcome = HttpReply | HttpError
-"""What a request came to: the reply (of any status), or why none came."""
 
 
 class _Origin(NamedTuple):
@@ -125,126 +96,6 @@ async def outcome_of(start: Callable[[Callable[[T], None]], Cancellable | None])
         raise
 
 
-class _Connection(asyncio.Protocol):
-    """One keep-alive connection; parses one reply at a time and hands it on from its I/O callback."""
-
-    def __init__(self, loop: asyncio.AbstractEventLoop) -> None:
-        # The loop it was made on, kept: on Python 3.11 every asyncio.get_running_loop() is a
-        # getpid() system call, six of them per forwarded call before this.
-        self._loop = loop
-        # One timer per connection, not one per request: it looks at the request waiting when it
-        # fires and times it out, or waits on for its deadline.
-        self._timer: asyncio.TimerHandle | None = None
-        self._deadline = 0.0
-        self.transport: asyncio.Transport | None = None
-        self.idle_since = 0.0
-        self.received_any = False
-        self._parser = httptools.HttpResponseParser(self)
-        self._headers: dict[str, str] = {}
-        self._body: list[bytes] = []
-        self._size = 0
-        self._on_done: Callable[[_Connection, Outcome], None] | None = None  # while a request awaits its reply
-        self._closed = False
-
-    # -- asyncio.Protocol -------------------------------------------------------------------
-
-    def connection_made(self, transport: asyncio.BaseTransport) -> None:
-        self.transport = transport  # type: ignore[assignment]
-
-    def data_received(self, data: bytes) -> None:
-        self.received_any = True
-        if self._on_done is None:  # bytes nobody asked for: the connection cannot be trusted
-            self.close()
-            return
-        try:
-            self._parser.feed_data(data)
-        except httptools.HttpParserError as error:
-            self._fail(HttpUnreachable(f"malformed reply: {error}"))
-
-    def connection_lost(self, exc: Exception | None) -> None:
-        self._closed = True
-        self._fail(HttpUnreachable("the server closed the connection before replying"))
-
-    # -- httptools callbacks -----------------------------------------------------------------
-
-    def on_header(self, name: bytes, value: bytes) -> None:
-        self._headers[name.decode("latin-1").lower()] = value.decode("latin-1")
-
-    def on_body(self, body: bytes) -> None:
-        self._size += len(body)
-        if self._size > MAX_REPLY_BYTES:
-            self._fail(HttpUnreachable(f"reply larger than {MAX_REPLY_BYTES} bytes"))
-            return
-        self._body.append(body)
-
-    def on_message_complete(self) -> None:
-        reply = HttpReply(self._parser.get_status_code(), self._headers, b"".join(self._body))
-        self.idle_since = time.monotonic()
-        if not self._parser.should_keep_alive():
-            self.close()
-        self._finish(reply)
-
-    # -- use ---------------------------------------------------------------------------------
-
-    @property
-    def usable(self) -> bool:
-        return (
-            not self._closed
-            and self.transport is not None
-            and not self.transport.is_closing()
-            and time.monotonic() - self.idle_since < _MAX_IDLE_S
-        )
-
-    def send(self, request: bytes, timeout_s: float, on_done: Callable[[_Connection, Outcome], None]) -> None:
-        """Write ``request``; ``on_done`` gets its reply, or :class:`HttpTimeout` if no whole reply
-        comes within ``timeout_s``, or :class:`HttpUnreachable`."""
-        self._headers = {}  # the parser goes on from the last reply (keep-alive)
-        self._body = []
-        self._size = 0
-        self.received_any = False
-        self._on_done = on_done
-        self._deadline = self._loop.time() + max(timeout_s, 0.0)
-        if self._timer is None or self._timer.when() > self._deadline:
-            self._arm_timer()
-        if self.transport is None:  # only connected ones are pooled or made: said, should it happen
-            self._fail(HttpUnreachable("the connection was never made"))
-            return
-        self.transport.write(request)
-
-    def close(self) -> None:
-        self._closed = True
-        self._stop_timer()
-        if self.transport is not None:
-            self.transport.close()
-
-    def _arm_timer(self) -> None:
-        self._stop_timer()
-        self._timer = self._loop.call_at(self._deadline, self._time_out)
-
-    def _time_out(self) -> None:
-        self._timer = None
-        if self._on_done is None:
-            return  # no request waits: the next one arms the timer again
-        if self._loop.time() < self._deadline:
-            self._arm_timer()  # a later request's: wait on
-            return
-        self._fail(HttpTimeout())
-
-    def _stop_timer(self) -> None:
-        if self._timer is not None:
-            self._timer.cancel()
-            self._timer = None
-
-    def _fail(self, error: HttpError) -> None:
-        self.close()
-        self._finish(error)
-
-    def _finish(self, outcome: Outcome) -> None:
-        on_done, self._on_done = self._on_done, None
-        if on_done is not None:
-            on_done(self, outcome)  # an _Exchange's, which guards its caller's callback
-
-
 class _Exchange:
     """One request and its way to an outcome: on a kept-alive connection, else on a new one; a
     kept-alive connection the server dropped while idle is tried again on a new one (it never saw
@@ -270,7 +121,7 @@ class _Exchange:
         self._timeout_s = timeout_s
         self._deadline = time.monotonic() + timeout_s
         self._on_done = on_done
-        self._connection: _Connection | None = None
+        self._connection: Connection | None = None
         self._reused = False
         self._connecting: asyncio.Task[None] | None = None
 
@@ -295,7 +146,7 @@ class _Exchange:
         try:
             async with asyncio.timeout(self._deadline - time.monotonic()):
                 _, connection = await loop.create_connection(
-                    lambda: _Connection(loop), origin.host, origin.port, **self._client._tls_options(origin)
+                    lambda: Connection(loop), origin.host, origin.port, **self._client._tls_options(origin)
                 )
         except TimeoutError:
             self._deliver(self._timed_out())
@@ -307,12 +158,12 @@ class _Exchange:
         self._connecting = None
         self._send_on(connection, reused=False)
 
-    def _send_on(self, connection: _Connection, *, reused: bool) -> None:
+    def _send_on(self, connection: Connection, *, reused: bool) -> None:
         self._connection = connection
         self._reused = reused
         connection.send(self._request, self._deadline - time.monotonic(), self._done)
 
-    def _done(self, connection: _Connection, outcome: Outcome) -> None:
+    def _done(self, connection: Connection, outcome: Outcome) -> None:
         self._connection = None
         if isinstance(outcome, HttpReply):
             self._client._keep(self._origin, connection)
@@ -344,7 +195,7 @@ class HttpClient:
     def __init__(self, headers: Mapping[str, str] | None = None, *, tls: ssl.SSLContext | None = None) -> None:
         self._tls = tls  # https://'s, made on first use: the system's certificates (ssl's default)
         self._default_headers = "".join(f"{name}: {value}\r\n" for name, value in (headers or {}).items())
-        self._idle: dict[_Origin, list[_Connection]] = {}
+        self._idle: dict[_Origin, list[Connection]] = {}
         self._request_lines: dict[tuple[str, str], tuple[_Origin, str]] = {}
         self._closed = False
         self._tasks: set[asyncio.Task[None]] = set()  # connecting: held here, the loop holds tasks weakly
@@ -426,7 +277,7 @@ class HttpClient:
             self._tls = ssl.create_default_context()
         return {"ssl": self._tls, "server_hostname": origin.host}
 
-    def _pooled(self, origin: _Origin) -> _Connection | None:
+    def _pooled(self, origin: _Origin) -> Connection | None:
         pool = self._idle.get(origin)
         while pool:
             connection = pool.pop()
@@ -441,7 +292,7 @@ class HttpClient:
         task.add_done_callback(self._tasks.discard)
         return task
 
-    def _keep(self, origin: _Origin, connection: _Connection) -> None:
+    def _keep(self, origin: _Origin, connection: Connection) -> None:
         if self._closed or not connection.usable:
             connection.close()
             return
