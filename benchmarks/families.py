@@ -6,7 +6,14 @@ from __future__ import annotations
 from benchmarks.runner import Family
 from benchmarks.suite import Suite
 from benchmarks.system_families import bag, http_clients, registry, services, startup, viewers
-from benchmarks.topic_families import fanout, latency, rosbridge, throughput, throughput_by_size
+from benchmarks.topic_families import (
+    fanout,
+    latency,
+    ros2,
+    rosbridge,
+    throughput,
+    throughput_by_size,
+)
 from benchmarks.world_families import flight, mission, robot, rtf_by_boxes, sim
 
 __all__ = ["families"]
@@ -29,6 +36,7 @@ def families(suite: Suite, only: set[str] | None = None) -> list[Family]:
         viewers(suite),
         rosbridge(suite),
         bag(suite),
+        *ros2(suite),
     ]
     if suite.plots:
         every += [throughput_by_size(suite), rtf_by_boxes(suite)]

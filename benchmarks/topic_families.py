@@ -13,7 +13,7 @@ from benchmarks.topics import CoreHolder, run_topic_pair
 BARE_WS = "bare websockets pair"
 ROSBRIDGE_MSGS_S = 5_000.0  # what rosbridge users report; the issue asks for 10x that
 
-__all__ = ["fanout", "latency", "rosbridge", "throughput", "throughput_by_size"]
+__all__ = ["fanout", "latency", "ros2", "rosbridge", "throughput", "throughput_by_size"]
 
 
 def _topic_trial(suite: Suite, transport: str, mode: str, **options: Any) -> Trial:
@@ -192,3 +192,14 @@ def fanout(suite: Suite) -> Family:
 
     return Family("fanout", [trial], suite.settings.fanout_repetitions, summarise,
                   rows=("fanout_100", "fanout_100_publisher_cpu"))  # fmt: skip
+
+
+def ros2(suite: Suite) -> list[Family]:
+    """The ROS 2 bridge's rows (benchmarks/ros2.py), only where the ros2 extra is installed."""
+    from services.protocols.ros2.extra import missing_extra
+
+    if missing_extra() is not None:
+        return []
+    from benchmarks.ros2 import ros2_family
+
+    return [ros2_family(suite.settings.topic_repetitions, suite.settings.throughput_s * 2)]

@@ -6,6 +6,8 @@ launcher and the CLI all descend from one class. The whole tree::
     SkydeckError                          http  close  raised when
     ├── InvalidNameError (ValueError)      404  1008   a topic/service/node name is not a ROS name
     ├── UnknownInterfaceError (LookupError)404  1008   a type name no message or service has
+    ├── DefinitionError (ValueError)       422  1008   a .msg/.srv/.action file cannot be read (file:line)
+    ├── DefinitionConflict (ValueError)    409  1008   another version of a type this process holds
     ├── FrameRejected                       -   its own  a client's frame or option cannot be taken
     ├── NodeError                          500  1011   a node used in a way it cannot honour
     ├── ParameterException                 400   -     a parameter used in a way the node cannot honour
@@ -33,6 +35,10 @@ launcher and the CLI all descend from one class. The whole tree::
     ├── TransformException                  -    -     tf2's, with its subclasses (services/ros/tf2_ros/exceptions.py)
     ├── TypeException (TypeError)           -    -     Buffer.transform of an unregistered type (tf2_ros)
     ├── CvBridgeError (TypeError)           -    -     an image cv_bridge cannot convert (services/ros/cv_bridge/)
+    ├── CdrError (ValueError)               -    -     a value that does not fit its CDR, or bytes that are no message (shared_models/cdr.py)
+    ├── NotBridged, TypeNotAvailable        -    -     a type the ROS 2 bridge cannot carry (services/protocols/ros2/)
+    ├── BuildFailed                         -    -     a ROS 2 interface package did not build (its cmake output's tail)
+    ├── BridgeUnavailable                   -    -     `skydeck bridge ros2` cannot start here (the extra, an option)
     ├── CliError                            -    -     a CLI command the user can fix
     └── BenchError                          -    -     a benchmark could not be measured
 

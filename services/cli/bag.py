@@ -13,7 +13,7 @@ import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from services.cli.arguments import positive_float, ros_name
+from services.cli.arguments import known_type, positive_float, ros_name
 from services.cli.core_client import core_url, get_json
 from services.cli.errors import CliError
 
@@ -34,6 +34,10 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.add_argument("-x", "--exclude", metavar="REGEX", help="leave out topics this regular expression matches")
     p.add_argument("--max-duration", type=positive_float, metavar="S", help="stop after S seconds")
     p.add_argument("--max-size", type=positive_float, metavar="MB", help="stop once the file reaches MB megabytes")
+    p.add_argument(
+        "--encoding", choices=("json", "cdr"), default="json",
+        help="json (default: frames as received, for Foxglove) or cdr (ROS 2's: the ros2 profile, for rosbag2)",
+    )
     p.set_defaults(func=_record)
 
     p = verbs.add_parser("info", help="duration, times, message count and topics of a recording")
@@ -86,7 +90,7 @@ def _record(args: argparse.Namespace) -> int:
     )
     path = bag_path(args.output or time.strftime("skydeck_%Y_%m_%d-%H_%M_%S"))
     metadata = _metadata()  # also checks that the core answers, before a file is made
-    writer = BagWriter.create(path, metadata=metadata)
+    writer = BagWriter.create(path, metadata=metadata, encoding=args.encoding)
     print(f"recording to {path} (Ctrl-C stops)", flush=True)
     recorder = Recorder(writer, selection, limits=limits, settings=_node_settings(), say=_say)
     try:
@@ -175,6 +179,9 @@ def _play(args: argparse.Namespace) -> int:
     )
     with BagReader(args.file) as reader:
         _warn_if_recovered(reader)
+        for topic in reader.summary.topics:  # a workspace's own types: the folder's, or the core's
+            with contextlib.suppress(CliError):
+                known_type(topic.type_name)
         player = Player(reader, options, settings=_node_settings(), say=_say)
         check_types(get_json("/api/graph")["topics"], player.played_types)
         summary = reader.summary
@@ -204,9 +211,9 @@ def _say(line: str) -> None:
 
 
 def _node_settings() -> Any:
-    from services.runtime.settings import NodeSettings, process_settings
+    from services.runtime.settings import node_settings
 
-    return process_settings(NodeSettings).model_copy(update={"port": 0})
+    return node_settings().model_copy(update={"port": 0})
 
 
 def _run(node: Node, keys: Callable[[], contextlib.AbstractContextManager[bool]] | None = None) -> bool:

@@ -3,24 +3,23 @@
 from __future__ import annotations
 
 import json
-import os
 from typing import Any
 
 from services.cli.errors import CliError
+from services.cli.settings import cli_settings
 from services.runtime.http_client import HttpError, HttpReply, HttpTimeout, request_once
-from services.runtime.settings import DEFAULT_CORE_URL
 
 __all__ = ["auth_headers", "core_url", "error_detail", "get", "get_json", "post_json", "ws_url"]
 
 
 def core_url() -> str:
     """The core's URL: ``SKYDECK_CORE_URL`` or the default ``http://127.0.0.1:8000``."""
-    return os.environ.get("SKYDECK_CORE_URL", DEFAULT_CORE_URL).rstrip("/")
+    return cli_settings().core_url.rstrip("/")
 
 
 def auth_headers() -> dict[str, str]:
     """The Authorization header when ``SKYDECK_TOKEN`` is set."""
-    token = os.environ.get("SKYDECK_TOKEN", "")
+    token = cli_settings().token
     return {"Authorization": f"Bearer {token}"} if token else {}
 
 

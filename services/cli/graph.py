@@ -10,6 +10,7 @@ from typing import Any, Literal
 from services.cli.arguments import known_type, ros_name
 from services.cli.core_client import get_json
 from services.cli.errors import CliError
+from services.cli.formatting import system_name
 
 __all__ = ["add_graph_verbs", "lookup", "print_sections"]
 
@@ -35,12 +36,18 @@ def print_sections(record: dict[str, Any], sections: tuple[tuple[str, str], ...]
 
 
 def _print_list(noun: Literal["topic", "service"], show_types: bool, verbose: bool) -> int:
-    for entity in get_json("/api/graph")[noun + "s"]:
+    graph = get_json("/api/graph")
+    # Nodes of another system a bridge sees (ROS 2's): the topics they publish say so with -t and -v.
+    foreign = {node["name"]: node["system"] for node in graph["nodes"] if node.get("system")}
+    for entity in graph[noun + "s"]:
         line = entity["name"]
         if show_types:
             line += f" [{entity['type']}]"
         if verbose:
             line += f" {len(entity['publishers'])} publisher(s), {len(entity['subscribers'])} subscriber(s)"
+        systems = sorted({foreign[p] for p in entity.get("publishers", ()) if p in foreign})
+        if systems and (show_types or verbose):
+            line += f" (from {', '.join(system_name(s) for s in systems)})"
         print(line)
     return 0
 

@@ -101,4 +101,3 @@ class RosLaunch:
         if not nodes:
             raise LaunchFileError(self.file, "the launch file starts no node (and a core already runs)")
         return LaunchSpec(nodes=tuple(nodes))
-

@@ -21,6 +21,7 @@ from services.launch.errors import LaunchFileError
 from services.launch.ros_packages import PackageNotFound, RosPackage, find_package, package_of
 from services.launch.roslaunch import RosLaunch, RosNode
 from services.launch.roslaunch_xml import Element, read_xml
+from services.launch.settings import LaunchSettings
 from services.runtime.rosparam import check_parameter_value, parameter_tokens
 from shared_models.names import InvalidNameError, resolve_name, resolve_node_name
 
@@ -62,7 +63,8 @@ class _Scope:
 class _Reader:
     """Reads one launch file and those it includes into nodes, parameters and warnings."""
 
-    def __init__(self) -> None:
+    def __init__(self, environ: Mapping[str, str]) -> None:
+        self._environ = environ  # what $(env) and $(optenv) read: the launcher's environment
         self.nodes: list[RosNode] = []
         self.parameters: list[tuple[str, Any]] = []
         self.warnings: list[str] = []
@@ -131,11 +133,11 @@ class _Reader:
             except PackageNotFound as error:
                 raise self.fail(scope, element, f"$(find {arguments[0]}): {error}") from None
         if command == "env" and len(arguments) == 1:
-            if arguments[0] not in os.environ:
+            if arguments[0] not in self._environ:
                 raise self.fail(scope, element, f"$(env {arguments[0]}): the variable is not set (use $(optenv ...))")
-            return os.environ[arguments[0]]
+            return self._environ[arguments[0]]
         if command == "optenv" and arguments:
-            return os.environ.get(arguments[0], " ".join(arguments[1:]))
+            return self._environ.get(arguments[0], " ".join(arguments[1:]))
         if command == "dirname" and not arguments:
             return str(scope.file.parent)
         if command == "anon" and len(arguments) == 1:
@@ -453,12 +455,15 @@ def _leaves(data: dict[str, Any], prefix: str) -> list[tuple[str, Any]]:
     return pairs
 
 
-def load_roslaunch_file(path: str | Path, args: Mapping[str, str] | None = None) -> RosLaunch:
-    """Read a roslaunch file, with ``args`` as its command line's ``name:=value``.
+def load_roslaunch_file(
+    path: str | Path, args: Mapping[str, str] | None = None, *, environ: Mapping[str, str] | None = None
+) -> RosLaunch:
+    """Read a roslaunch file, with ``args`` as its command line's ``name:=value`` and
+    ``environ`` for its ``$(env NAME)`` (default: the launcher's, :class:`LaunchSettings`).
 
     Raises ``LaunchFileError`` with one line naming the file, the line and the problem.
     """
     path = Path(path).resolve() if Path(path).exists() else Path(path)
-    reader = _Reader()
+    reader = _Reader(environ if environ is not None else LaunchSettings().environment)
     reader.read_file(_Scope(path, package_of(path), "/", {}, {}, dict(args or {}), set(), [], {}))
     return RosLaunch(path, tuple(reader.nodes), tuple(reader.parameters), tuple(reader.warnings))

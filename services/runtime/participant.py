@@ -17,12 +17,13 @@ from services.runtime.edge.encoding import Encoding
 from services.runtime.edge.links import PublisherLink
 from services.runtime.endpoint import TopicEndpoint
 from services.runtime.errors import NodeError
-from services.runtime.protocol import Entity, NodeDescription, PublisherAddress
+from services.runtime.protocol import Entity, ForeignNode, NodeDescription, PublisherAddress
 from services.runtime.service import Service
 from services.runtime.settings import ProcessSettings
 from services.runtime.subscription import RawSubscription
 from services.runtime.wire import MAX_QUEUE
 from shared_models import Message, resolve_name
+from shared_models.definitions.loader import definitions_of
 
 __all__ = ["Participant"]
 
@@ -53,6 +54,8 @@ class Participant:
         self.services: dict[str, Service] = {}
         # (topic, publisher URL) -> the link and the task running it
         self.links: dict[tuple[str, str], tuple[PublisherLink, asyncio.Task[None]]] = {}
+        # Other systems' participants it bridges to (a ROS 2 bridge's ROS 2 nodes), for the graph
+        self.foreign: list[ForeignNode] = []
         self._spawn: Spawn | None = None
         self._on_endpoint = on_endpoint
         self._on_service = on_service
@@ -104,6 +107,7 @@ class Participant:
             if endpoint.subscribed:
                 subscriptions.append(entity)
         services = [Entity(name=s.name, type=s.srv_type.__ros_type__) for s in self.services.values()]
+        types = [e.msg_type for e in self.endpoints.values() if e.msg_type is not None]
         return NodeDescription(
             name=self.name,
             url=self.url,
@@ -111,6 +115,8 @@ class Participant:
             publications=publications,
             subscriptions=subscriptions,
             services=services,
+            foreign=self.foreign,
+            interfaces=definitions_of([*types, *(s.srv_type for s in self.services.values())]),
         )
 
     def published_counts(self) -> dict[str, int]:
@@ -139,7 +145,7 @@ class Participant:
         # Nodes link in msgpack; a topic read here only raw (a recorder) links in JSON, so its
         # frames come as the publisher serialised them, never converted here.
         raw_only = bool(endpoint.taps) and not endpoint.subscriptions and all(
-            isinstance(tap, RawSubscription) for tap in endpoint.taps
+            isinstance(tap, RawSubscription) and tap.encoding is Encoding.JSON for tap in endpoint.taps
         )
         encoding = Encoding.JSON if raw_only else Encoding.MSGPACK
         for url in wanted:
