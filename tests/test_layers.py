@@ -50,10 +50,9 @@ def test_a_layer_never_loads_the_layers_above_it(module: str) -> None:
 
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGES = ("services", "shared_models", "sim_server", "benchmarks")
-# Cycles that other parts of issue 31 remove (the protocols' and the simulator's reshapes); the
-# test fails on any other, and on these once they are gone (then delete the line).
+# A cycle that another part of issue 31 removes (the simulator's reshape); the
+# test fails on any other, and on this one once it is gone (then delete the line).
 KNOWN_CYCLES: set[frozenset[str]] = {
-    frozenset({"services.core.protocols.access", "services.core.protocols.session"}),
     frozenset({"sim_server.camera_stream", "sim_server.world_node"}),
 }
 
