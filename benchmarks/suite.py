@@ -40,12 +40,13 @@ class Settings:
     plot_throughput_s: float = 1.5
     bag_repetitions: int = 1
     bag_window_s: float = 2.0
+    http_client_repetitions: int = 3
 
 
 QUICK = Settings(
     topic_repetitions=3, throughput_s=1.0, latency_s=1.5, latency_rate_hz=1000.0,
     fanout_repetitions=1, fanout_s=2.0,
-    service_repetitions=3, service_calls=300,
+    service_repetitions=3, service_calls=300, http_client_repetitions=1,
     sim_repetitions=2, sim_window_s=1.0, sim_bare_steps=2400,
     mission_worlds=20, mission_flights=1, startup_repetitions=1,
 )  # fmt: skip

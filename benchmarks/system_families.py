@@ -209,5 +209,5 @@ def http_clients(suite: Suite) -> Family:
                    samples=[r["ms"] for r in readings["once:internal"]]),
         ]  # fmt: skip
 
-    return Family("http_clients", trials, suite.settings.service_repetitions, summarise,
+    return Family("http_clients", trials, suite.settings.http_client_repetitions, summarise,
                   rows=("http_client_cpu_per_call", "http_client_one_shot"), close=targets.close)  # fmt: skip
