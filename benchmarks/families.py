@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+from benchmarks.camera import camera_family
 from benchmarks.runner import Family
 from benchmarks.suite import Suite
 from benchmarks.system_families import bag, http_clients, registry, services, startup, viewers
@@ -34,6 +35,7 @@ def families(suite: Suite, only: set[str] | None = None) -> list[Family]:
         startup(suite),
         registry(suite),
         viewers(suite),
+        camera_family(suite.core, window_s=max(suite.settings.sim_window_s, 3.0), repetitions=suite.settings.sim_repetitions),
         rosbridge(suite),
         bag(suite),
         *ros2(suite),

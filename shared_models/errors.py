@@ -19,6 +19,7 @@ launcher and the CLI all descend from one class. The whole tree::
     │   ├── ServiceCallRejectedError       4xx   -     its node refused the request
     │   └── ServiceCallFailed              its   -     a call through the core reached no service
     ├── ServiceHandlerError                500   -     a handler raised or returned the wrong type
+    ├── GoalTransitionError                 -    -     an action goal moved as ROS 2's state machine forbids
     ├── RegistrationRejected                -    -     the core refused a node's session
     ├── EndpointPortBusy                    -    -     a protocol endpoint's port is taken at start-up
     ├── Refused (rosbridge), _Refused (Foxglove)  a protocol op that cannot be done: a status reply
@@ -26,6 +27,8 @@ launcher and the CLI all descend from one class. The whole tree::
     ├── HttpError                           -    -     an internal HTTP request got no reply
     │   ├── HttpTimeout / HttpUnreachable
     ├── InvalidCommand (ValueError)         -    -     a setpoint or cmd_vel the physics refuses
+    ├── UnknownWorld (LookupError)          -    -     a world name the table of worlds does not have
+    ├── GlUnavailable (RuntimeError)        -    -     no OpenGL for the camera (it falls back to PyBullet's renderer)
     ├── LaunchError                         -    -     a launch cannot go ahead
     │   └── LaunchFileError                            the launch file is missing or wrong
     ├── PackageNotFound (LookupError)       -    -     a roslaunch file's package or node type is not there

@@ -31,7 +31,10 @@ LAYERS = {
     "services.protocols.foxglove": ("services.protocols.rosbridge", "services.launch", "services.cli"),
     "services.launch.supervisor": ("services.cli",),
     "services.launch.plan": ("services.cli", "services.core", "services.protocols.rosbridge", "services.protocols.foxglove"),
-    "sim_server.node": ("services.cli", "services.launch", "services.core"),
+    "sim_server.node": ("services.cli", "services.launch", "services.core", "sim_server.drone", "sim_server.robot"),
+    "sim_server.drone.node": ("services.cli", "services.launch", "services.core", "sim_server.robot"),
+    "sim_server.robot.node": ("services.cli", "services.launch", "services.core", "sim_server.drone"),
+    "sim_server.world_node": ("sim_server.drone", "sim_server.robot", "sim_server.worlds"),
 }
 
 
@@ -50,13 +53,6 @@ def test_a_layer_never_loads_the_layers_above_it(module: str) -> None:
 
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGES = ("services", "shared_models", "sim_server", "benchmarks")
-# A cycle that another part of issue 31 removes (the simulator's reshape); the
-# test fails on any other, and on this one once it is gone (then delete the line).
-KNOWN_CYCLES: set[frozenset[str]] = {
-    frozenset({"sim_server.camera_stream", "sim_server.world_node"}),
-}
-
-
 def _modules() -> dict[str, Path]:
     found: dict[str, Path] = {}
     for package in PACKAGES:
@@ -140,11 +136,8 @@ def test_no_import_cycles_counting_type_only_and_function_level_imports() -> Non
     (split the types out), and a function-level one only hides it."""
     modules = _modules()
     graph = {module: _imports(module, path, modules) for module, path in modules.items()}
-    cycles = set(_cycles(graph))
-    new = [sorted(cycle) for cycle in cycles - KNOWN_CYCLES]
-    assert not new, f"import cycles: {new}"
-    gone = [sorted(cycle) for cycle in KNOWN_CYCLES - cycles]
-    assert not gone, f"these cycles are gone: delete them from KNOWN_CYCLES: {gone}"
+    cycles = [sorted(cycle) for cycle in _cycles(graph)]
+    assert not cycles, f"import cycles: {cycles}"
 
 
 def test_the_cycle_finder_finds_a_cycle_and_only_cycles() -> None:

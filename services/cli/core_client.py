@@ -3,13 +3,16 @@
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 from typing import Any
 
 from services.cli.errors import CliError
 from services.cli.settings import cli_settings
 from services.runtime.http_client import HttpError, HttpReply, HttpTimeout, request_once
 
-__all__ = ["auth_headers", "core_url", "error_detail", "get", "get_json", "post_json", "ws_url"]
+__all__ = [
+    "auth_headers", "core_url", "error_detail", "get", "get_json", "node_settings", "post_json", "unknown_name", "ws_url",
+]  # fmt: skip
 
 
 def core_url() -> str:
@@ -31,6 +34,14 @@ def ws_url(path: str, **query: Any) -> str:
     return f"{'wss' if scheme == 'https' else 'ws'}://{rest}{path}" + (f"?{params}" if params else "")
 
 
+def node_settings() -> Any:
+    """The settings of a node the CLI runs itself (a recorder, an action client): the
+    process's, on a port of its own choosing."""
+    from services.runtime.settings import node_settings as process_node_settings
+
+    return process_node_settings().model_copy(update={"port": 0})
+
+
 def _unreachable(error: Exception) -> CliError:
     return CliError(
         f"cannot reach the core at {core_url()} ({error}): is it running? "
@@ -43,14 +54,15 @@ def get(url: str, *, timeout_s: float) -> HttpReply:
     return request_once("GET", url, timeout_s=timeout_s, headers=auth_headers())
 
 
-def get_json(path: str, *, missing: str | None = None) -> Any:
-    """GET ``path`` on the core; a 404 raises CliError(``missing``) when given."""
+def get_json(path: str, *, missing: str | Callable[[], str] | None = None) -> Any:
+    """GET ``path`` on the core; a 404 raises CliError(``missing``) when given (a callable is
+    asked only then: what to say may take another request, as the nearest names do)."""
     try:
         reply = get(core_url() + path, timeout_s=5.0)
     except HttpError as error:
         raise _unreachable(error) from None
     if reply.status == 404 and missing is not None:
-        raise CliError(missing)
+        raise CliError(missing if isinstance(missing, str) else missing())
     if reply.status != 200:
         raise CliError(f"the core answered {reply.status} for {path}: {error_detail(reply)}")
     return reply.json()
@@ -68,6 +80,14 @@ def post_json(path: str, body: Any, *, timeout_s: float) -> HttpReply:
         raise CliError(f"no answer from {path} within {timeout_s:g} s (--timeout to wait longer)") from None
     except HttpError as error:
         raise _unreachable(error) from None
+
+
+def unknown_name(kind: str, name: str) -> Callable[[], str]:
+    """``get_json``'s ``missing`` for a topic, service or node the system does not have: the one
+    line, with the nearest names it has (``unknown topic /x (did you mean /y?): see ...``)."""
+    from services.cli.suggestions import graph_names, unknown
+
+    return lambda: unknown(kind, name, graph_names(get_json("/api/graph"), kind + "s"), listing=f"skydeck {kind} list")
 
 
 def error_detail(reply: HttpReply) -> str:

@@ -13,9 +13,9 @@ from websockets.exceptions import ConnectionClosed, InvalidHandshake
 from services.cli.arguments import known_type, positive_float, positive_int, ros_name
 from services.cli.core_client import auth_headers, core_url, get_json, ws_url
 from services.cli.errors import CliError
-from services.cli.formatting import message_view, parse_data, to_csv, to_yaml
+from services.cli.formatting import message_from, message_view, system_name, to_csv, to_yaml
 from services.cli.graph import add_graph_verbs, lookup, print_sections
-from services.cli.streams import frames, warn_if_unpublished
+from services.cli.streams import check_topic, frames
 from services.cli.topic_stats import add_stats_parsers
 from shared_models.close_codes import Close
 
@@ -26,14 +26,16 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     topic = subparsers.add_parser("topic", help="list, inspect, echo and publish topics")
     verbs = topic.add_subparsers(dest="verb", required=True, metavar="VERB")
 
-    listing = add_graph_verbs(
+    listed = add_graph_verbs(
         verbs,
         "topic",
-        info_help="type, publishers, subscribers and rate of a topic",
+        listing=_list,
+        list_help="list the topics of the running system",
         info=_info,
+        info_help="type, publishers, subscribers and rate of a topic",
         example_type="geometry_msgs/msg/PoseStamped",
     )
-    listing.add_argument("-v", "--verbose", action="store_true", help="show publisher and subscriber counts")
+    listed.add_argument("-v", "--verbose", action="store_true", help="show publisher and subscriber counts")
 
     p = verbs.add_parser("echo", help="print the messages of a topic")
     p.add_argument("topic")
@@ -61,6 +63,23 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.set_defaults(func=_pub)
 
 
+def _list(args: argparse.Namespace) -> int:
+    graph = get_json("/api/graph")
+    # Nodes of another system a bridge sees (ROS 2's): their topics say so with -t and -v.
+    foreign = {node["name"]: node["system"] for node in graph["nodes"] if node.get("system")}
+    for topic in graph["topics"]:
+        line = topic["name"]
+        if args.show_types:
+            line += f" [{topic['type']}]"
+        if args.verbose:
+            line += f" {len(topic['publishers'])} publisher(s), {len(topic['subscribers'])} subscriber(s)"
+        systems = sorted({foreign[p] for p in topic["publishers"] if p in foreign})
+        if systems and (args.show_types or args.verbose):
+            line += f" (from {', '.join(system_name(s) for s in systems)})"
+        print(line)
+    return 0
+
+
 def _info(args: argparse.Namespace) -> int:
     name = ros_name(args.topic)
     topic = lookup("topic", name)
@@ -75,8 +94,10 @@ def _info(args: argparse.Namespace) -> int:
 
 def _echo(args: argparse.Namespace) -> int:
     name = ros_name(args.topic)
-    warn_if_unpublished(name)
     limit = 1 if args.once else args.count
+    # A bounded echo (a script's "give me a message") fails on a name the system lacks; a stream,
+    # or one given --timeout, waits for a publisher to come, as rostopic and ros2 topic wait.
+    check_topic(name, wait=limit is None or args.timeout is not None)
     show = message_view(field=args.field, no_arr=args.no_arr)
 
     async def run() -> None:
@@ -106,19 +127,13 @@ def _echo(args: argparse.Namespace) -> int:
 
 def _pub(args: argparse.Namespace) -> int:
     # The message types and the validation, here and not at the top: see cli/interface.py.
-    from pydantic import ValidationError
-
-    from services.runtime.edge.frames import describe_validation_error
     from shared_models import Message
 
     name = ros_name(args.topic)
     msg_type = known_type(args.type)
     if not issubclass(msg_type, Message):
         raise CliError(f"{args.type} is a service type: use `skydeck service call`")
-    try:
-        msg = msg_type.model_validate(parse_data(args.data))
-    except ValidationError as error:
-        raise CliError(describe_validation_error(msg_type.__ros_type__, error)) from None
+    msg = message_from(args.data, msg_type)
     topics = {t["name"]: t for t in get_json("/api/graph")["topics"]}
     if name in topics and topics[name]["type"] != msg_type.__ros_type__:
         raise CliError(f"{name} is {topics[name]['type']}, not {msg_type.__ros_type__}")

@@ -16,9 +16,7 @@ master: one line says so). Both go to the same :class:`~services.launch.supervis
 from __future__ import annotations
 
 import asyncio
-import contextlib
 import dataclasses
-import sys
 import urllib.parse
 from collections.abc import Mapping
 from pathlib import Path
@@ -26,6 +24,7 @@ from typing import TextIO
 
 from services.launch.arguments import LaunchArgument
 from services.launch.errors import LaunchError
+from services.launch.output import say
 from services.launch.plan import LaunchOptions, core_url
 from services.launch.roslaunch import is_roslaunch_file
 from services.launch.roslaunch_reader import load_roslaunch_file
@@ -66,7 +65,7 @@ def run_launch(
     if roslaunch:
         ros = load_roslaunch_file(file, launch_args, environ=settings.environment)
         for warning in ros.warnings:
-            _print(out, f"[launch] warning: {warning}")
+            say(out, f"warning: {warning}")
         spec, parameters = ros.spec(start_core=True), ros.parameters
     else:
         spec, parameters = load_launch_file(file, launch_args or {}), ()
@@ -76,7 +75,7 @@ def run_launch(
     url = looked_at or core_url(spec, options)
     running = core_answers(url)
     if running:
-        _print(out, f"[launch] a core answers at {url}: the launch joins it")
+        say(out, f"a core answers at {url}: the launch joins it")
         if roslaunch:
             spec = ros.spec(start_core=False)
         else:
@@ -133,10 +132,3 @@ def core_answers(url: str) -> bool:
         return reply.status == 200 and bool(reply.json().get("node") == "/skydeck_core")
     except (HttpError, ValueError, AttributeError):  # no core, or something else answering there
         return False
-
-
-def _print(out: TextIO | None, line: str) -> None:
-    stream = out or sys.stdout
-    with contextlib.suppress(OSError, ValueError):
-        stream.write(line + "\n")
-        stream.flush()

@@ -116,4 +116,12 @@ def spin_until_future_complete(
         executor.remove_node(node)
 
 
-__getattr__ = not_provided_attributes("rclpy", ("action", "lifecycle", "wait_for_message", "type_support", "experimental"))
+_not_provided = not_provided_attributes("rclpy", ("lifecycle", "wait_for_message", "type_support", "experimental"))
+
+
+def __getattr__(name: str) -> Any:
+    if name == "action":  # a subpackage: imported on first use, as `import rclpy.action` does
+        import importlib
+
+        return importlib.import_module("services.ros.rclpy.action")
+    return _not_provided(name)

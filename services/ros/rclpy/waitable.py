@@ -16,6 +16,7 @@ from collections.abc import Callable
 from typing import Any, Protocol
 
 from services.ros.rclpy.callback_groups import CallbackGroup
+from services.ros.rclpy.logging import RcutilsLogger
 
 __all__ = ["JobQueue", "Owner", "Waitable", "run_callback"]
 
@@ -31,6 +32,8 @@ class Owner(Protocol):
     def _rclpy_dispatch(self, job: Job) -> None: ...
 
     def _rclpy_report(self, error: BaseException, what: str) -> None: ...
+
+    def get_logger(self) -> RcutilsLogger: ...
 
 
 class Waitable:

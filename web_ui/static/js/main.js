@@ -1,6 +1,7 @@
 // Wires the dashboard together and exposes a read-only debug hook on `window.skydeck`.
 
-import { socketStates } from "./api.js";
+import { ActionsPanel } from "./actions.js";
+import { socketStates, updatePublished } from "./api.js";
 import { initTokenButton } from "./auth.js";
 import { CameraView } from "./camera.js";
 import { Commands } from "./commands.js";
@@ -13,13 +14,13 @@ import { LayersPanel } from "./layers_panel.js";
 import { MapView } from "./map.js";
 import { ParametersPanel } from "./parameters.js";
 import { Plots } from "./plots.js";
-import { Room, topicIn } from "./room.js";
+import { ROBOT_TOPICS, Room, topicIn } from "./room.js";
 import { RecorderPanel } from "./recorder.js";
 import { StatusBanner } from "./status.js";
 import { Tabs } from "./tabs.js";
 import { Teleop } from "./teleop.js";
 import { View3DLoader } from "./view3d/loader.js";
-import { World } from "./world.js";
+import { DRONE_TOPICS, World } from "./world.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -102,15 +103,19 @@ const layersPanel = new LayersPanel({
   list: $("layer-list"),
 });
 const parameters = new ParametersPanel({ node: $("param-node"), table: $("param-list"), result: $("param-result"), refresh: $("param-refresh") });
+const actions = new ActionsPanel({ table: $("action-list"), empty: $("action-empty") });
 
 graph.addEventListener("update", () => {
   commands.updateGraph(graph.graph);
   if (!graph.graph) return;
+  updatePublished(graph.graph); // first: the sockets waiting for a publisher open
+
   tables.render(graph.graph);
   if (tabs.current === "graph") diagram.render(graph.graph);
   inspector.updateGraph(graph.graph);
   layersPanel.updateGraph(graph.graph);
   parameters.updateGraph(graph.graph);
+  actions.updateGraph(graph.graph);
   view3d.updateGraph(graph.graph);
 });
 function expandGraph(expanded) {
@@ -126,6 +131,7 @@ window.addEventListener("keydown", (event) => {
 tabs.addEventListener("change", () => {
   if (tabs.current === "graph" && graph.graph) diagram.render(graph.graph);
   parameters.setVisible(tabs.current === "parameters");
+  actions.setVisible(tabs.current === "actions");
 });
 
 const teleop = new Teleop({
@@ -187,17 +193,17 @@ function applyWorld() {
     plots.use(room, "robot");
     robots.replaceChildren(...world.namespaces.map((ns) => new Option(ns === "/" ? "robot" : ns.slice(1), ns)));
     robots.hidden = world.namespaces.length < 2;
-    teleop.setTarget("robot", topicIn(world.namespaces[0] || "/", "cmd_vel"));
+    teleop.setTarget("robot", topicIn(world.namespaces[0] || "/", ROBOT_TOPICS.cmd_vel));
   } else {
     room.stop();
     plots.use(world, "drone");
     robots.hidden = true;
-    teleop.setTarget("drone", "/drone/cmd_vel");
+    teleop.setTarget("drone", DRONE_TOPICS.cmd_vel);
   }
   map.fit();
 }
 world.addEventListener("world", applyWorld);
-$("teleop-robot").addEventListener("change", (event) => teleop.setTarget("robot", topicIn(event.target.value, "cmd_vel")));
+$("teleop-robot").addEventListener("change", (event) => teleop.setTarget("robot", topicIn(event.target.value, ROBOT_TOPICS.cmd_vel)));
 status.start();
 const recorder = new RecorderPanel({ toggle: $("record-toggle"), status: $("record-status"), list: $("recording-list") });
 recorder.start();
@@ -267,6 +273,10 @@ window.skydeck = Object.freeze({
   get parameters() {
     return { node: parameters.node, rows: copy(parameters.rows), last: copy(parameters.last) };
   },
+  /** The Actions tab's rows (while it is shown): [{action, type, goal, status, feedback}]. */
+  get actions() {
+    return actions.snapshot();
+  },
   get recorder() {
     return { recording: recorder.recording, current: copy(recorder.current), files: copy(recorder.files), error: recorder.error };
   },
@@ -283,9 +293,11 @@ function renderLegendLayers() {
   const box = $("legend-layers");
   box.replaceChildren();
   for (const layer of layers.list()) {
+    const item = document.createElement("span");
     const swatch = document.createElement("i");
     swatch.style.background = layer.color;
-    box.append(swatch, document.createTextNode(layer.topic));
+    item.append(swatch, document.createTextNode(layer.topic));
+    box.append(item);
   }
 }
 layers.addEventListener("change", renderLegendLayers);
