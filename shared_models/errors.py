@@ -33,6 +33,7 @@ launcher and the CLI all descend from one class. The whole tree::
     ├── TransformException                  -    -     tf2's, with its subclasses (services/ros/tf2_ros/exceptions.py)
     ├── TypeException (TypeError)           -    -     Buffer.transform of an unregistered type (tf2_ros)
     ├── CvBridgeError (TypeError)           -    -     an image cv_bridge cannot convert (services/ros/cv_bridge/)
+    ├── HighGuiError (cv2.error)            -    -     an OpenCV window call Skydeck cannot honour (services/ros/highgui/)
     ├── CliError                            -    -     a CLI command the user can fix
     └── BenchError                          -    -     a benchmark could not be measured
 
