@@ -147,7 +147,10 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(
         prog="skydeck run sim", description="The PyBullet simulator: the drone world or the robot world."
     )
-    parser.add_argument("--world", help="drone (default): the workshop's drone and boxes; robot: the Neato room")
+    parser.add_argument(
+        "--world",
+        help="drone (default): the workshop's drone and boxes; robot: the Neato room; soccer: the Neato room with a ball",
+    )
     parser.add_argument("--seed", help="random seed; the same seed gives the same world")
     parser.add_argument("--speed", help="times real time, or 'max' (default 1)")
     parser.add_argument("--boxes", help=f"drone world: number of boxes, 0-{MAX_BOXES} (default {DEFAULT_BOXES})")
@@ -162,12 +165,13 @@ def main(argv: list[str] | None = None) -> int:
         help=f"camera frames a second while watched, {MIN_CAMERA_RATE_HZ:g}-{MAX_CAMERA_RATE_HZ:g} (default 5)",
     )
     sim = settings_from_flags(parser, SimSettings, argv)
-    if sim.world == "robot":
+    if sim.world in ("robot", "soccer"):
         from sim_server.robot.node import RobotSimNode
+        from sim_server.soccer.node import SoccerSimNode
 
         if "boxes" in sim.model_fields_set:
             parser.error("--boxes (SKYDECK_SIM_BOXES) is the drone world's: the robot world has --obstacles")
-        spin(RobotSimNode(sim))
+        spin(SoccerSimNode(sim) if sim.world == "soccer" else RobotSimNode(sim))
     else:
         spin(SimulatorNode(sim))
     return 0

@@ -41,7 +41,7 @@ class SimSettings(BaseSettings):
 
     model_config = SettingsConfigDict(env_prefix="SKYDECK_SIM_", extra="ignore")
 
-    world: Literal["drone", "robot"] = "drone"
+    world: Literal["drone", "robot", "soccer"] = "drone"  # soccer: the robot world with a ball
     seed: int | None = Field(default=None, ge=0, le=2**32 - 1, description="None draws one")
     speed: float | None = Field(
         default=1.0, description="times real time; None is as fast as possible"
@@ -90,7 +90,7 @@ class SimSettings(BaseSettings):
     @field_validator("robots", "obstacles")
     @classmethod
     def _robot_world_only(cls, value: int | None, info: ValidationInfo) -> int | None:
-        if value is not None and info.data.get("world") != "robot":
+        if value is not None and info.data.get("world") not in ("robot", "soccer"):
             raise PydanticCustomError(
                 "robot_world_only", f"only the robot world has {info.field_name}: add --world robot"
             )
