@@ -35,6 +35,7 @@ class BallTracker(Node):
         self.turn_gain = 0.8
         self.search_turn = 0.35
         self.running = True
+        self.ball_seen = False
         self.create_subscription(Image, image_topic, self.process_image, 10)
         self.pub = self.create_publisher(Twist, 'cmd_vel', 10)
         Thread(target=self.loop_wrapper, daemon=True).start()
@@ -91,6 +92,9 @@ class BallTracker(Node):
         if moments['m00'] >= self.min_area:
             x = moments['m10'] / moments['m00']
             y = moments['m01'] / moments['m00']
+            if not self.ball_seen:
+                self.ball_seen = True
+                self.get_logger().info(f'ball in sight at ({x:.0f}, {y:.0f}) in the image: following it')
             offset = (x - image.shape[1] / 2) / (image.shape[1] / 2)   # -1 at the left edge, 1 at the right
             twist.linear.x = self.forward_speed * (1.0 - min(abs(offset), 1.0))
             twist.angular.z = -self.turn_gain * offset
@@ -109,7 +113,10 @@ class BallTracker(Node):
 def main(args=None):
     rclpy.init(args=args)
     node = BallTracker('camera/image_raw')
-    rclpy.spin(node)
+    try:
+        rclpy.spin(node)
+    except KeyboardInterrupt:   # Ctrl-C: stop the robot on the way out
+        node.pub.publish(Twist())
     node.destroy_node()
     rclpy.try_shutdown()
 

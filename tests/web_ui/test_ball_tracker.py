@@ -73,5 +73,10 @@ def test_the_ball_tracker_pushes_the_ball_and_its_windows_are_in_the_dashboard(s
         )["poses"][0]["position"]  # fmt: skip
         assert ball["x"] > BALL_START_M[0] + 0.4  # along +x, ahead of where the robot started
         assert math.dist(_robot(soccer), _ball(soccer)) < start_gap
+
+        # Tuned from the dashboard: with no hue allowed, the mask is black and the tracker turns
+        # on the spot looking for the ball (its trackbar callback ran, its loop acted on it).
+        page.locator(".cv-window[data-window='binary_window'] input[data-trackbar='hue upper']").fill("0")  # type: ignore[attr-defined]
+        wait_for(soccer, "/cmd_vel", lambda m: m["linear"]["x"] == 0.0 and m["angular"]["z"] == pytest.approx(0.35), timeout_s=30)
         assert recorder.errors == []
     assert no_skydeck_frames(tracker.lines) and not any("Traceback" in line for line in tracker.lines), tracker.tail()
