@@ -20,9 +20,10 @@ from typing import TYPE_CHECKING
 from shared_models.lazy import lazy_exports
 
 if TYPE_CHECKING:
-    from shared_models._message import Message, ServiceType, all_interfaces
+    from shared_models._message import ActionType, Message, ServiceType
     from shared_models.interfaces import (
         UnknownInterfaceError,
+        all_interfaces,
         get_interface,
         interface_names,
         interface_text,
@@ -36,6 +37,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "RESERVED_PREFIXES",
+    "ActionType",
     "InvalidNameError",
     "Message",
     "ServiceType",
@@ -49,12 +51,13 @@ __all__ = [
 ]
 
 _HOMES = {
+    "ActionType": "shared_models._message",
     "RESERVED_PREFIXES": "shared_models.names",
     "InvalidNameError": "shared_models.names",
     "Message": "shared_models._message",
     "ServiceType": "shared_models._message",
     "UnknownInterfaceError": "shared_models.interfaces",
-    "all_interfaces": "shared_models._message",
+    "all_interfaces": "shared_models.interfaces",
     "get_interface": "shared_models.interfaces",
     "interface_names": "shared_models.interfaces",
     "interface_text": "shared_models.interfaces",

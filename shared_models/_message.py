@@ -3,7 +3,7 @@
 A message is a pydantic v2 model whose field names, defaults and JSON match the ROS message of
 the same name, so ROS code reads the same: ``Point(x=1.0, y=2.0, z=0.0)``. Each concrete type
 declares its ROS name in ``__ros_type__`` (``"geometry_msgs/msg/Point"``), which registers it
-for lookup by name (:func:`shared_models.get_interface`).
+for lookup by name (:func:`shared_models.get_interface`, which loads the package it names).
 
 Field types carry their ROS primitive through ``Annotated`` aliases (``Float64``, ``UInt32``...),
 which is what ``skydeck interface show`` prints.
@@ -18,6 +18,7 @@ from __future__ import annotations
 import base64
 import binascii
 import re
+from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Annotated, Any, ClassVar
 
@@ -33,6 +34,8 @@ from pydantic import (
 )
 
 __all__ = [
+    "ActionType",
+    "Base64Bytes",
     "Bool",
     "Byte",
     "ByteArray",
@@ -52,8 +55,9 @@ __all__ = [
     "UInt16",
     "UInt32",
     "UInt64",
-    "all_interfaces",
     "fixed_floats",
+    "forget_interfaces",
+    "registered",
 ]
 
 
@@ -144,6 +148,7 @@ _Base64Bytes = Annotated[
         }
     ),
 ]
+Base64Bytes = _Base64Bytes  # for a byte array of another size: Annotated[Base64Bytes, RosPrimitive("uint8[16]")]
 UInt8Array = Annotated[_Base64Bytes, RosPrimitive("uint8[]")]
 ByteArray = Annotated[_Base64Bytes, RosPrimitive("byte[]")]
 
@@ -155,23 +160,28 @@ def fixed_floats(length: int) -> Any:
     return Field(default_factory=lambda: [0.0] * length, min_length=length, max_length=length)
 
 
-# Every registered interface by its full ROS name ("pkg/msg/Name" or "pkg/srv/Name").
-_INTERFACES: dict[str, type[Message] | type[ServiceType]] = {}
+# Every registered interface by its full ROS name ("pkg/msg/Name", "pkg/srv/Name", "pkg/action/Name").
+_INTERFACES: dict[str, type[Message] | type[ServiceType] | type[ActionType]] = {}
 
 
-def _register(ros_type: str, cls: type[Message] | type[ServiceType]) -> None:
+def _register(ros_type: str, cls: type[Message] | type[ServiceType] | type[ActionType]) -> None:
     existing = _INTERFACES.get(ros_type)
     if existing is not None and existing is not cls:
         raise TypeError(f"interface {ros_type} is defined twice ({existing!r} and {cls!r})")
     _INTERFACES[ros_type] = cls
 
 
-def all_interfaces() -> dict[str, type[Message] | type[ServiceType]]:
-    """Every message and service type by its full ROS name (the whole catalogue is loaded)."""
-    from shared_models.catalogue import load_catalogue
+def forget_interfaces(names: Iterable[str]) -> None:
+    """Unregister ``names`` (the definition loader undoes a build that failed half-way, so the
+    fixed file can be built again)."""
+    for name in names:
+        _INTERFACES.pop(name, None)
 
-    load_catalogue()
-    return dict(_INTERFACES)
+
+def registered(prefix: str = "") -> dict[str, type[Message] | type[ServiceType] | type[ActionType]]:
+    """The types registered so far whose name starts with ``prefix`` (``"std_srvs/srv/"``),
+    without loading the catalogue: a package's view needs only its own module."""
+    return {name: cls for name, cls in _INTERFACES.items() if name.startswith(prefix)}
 
 
 class Message(BaseModel):
@@ -255,4 +265,35 @@ class ServiceType:
             for part in ("Request", "Response"):
                 if not (isinstance(getattr(cls, part, None), type) and issubclass(getattr(cls, part), Message)):
                     raise TypeError(f"service {cls.__ros_type__} needs a {part} message class")
+            _register(cls.__ros_type__, cls)
+
+
+class ActionType:
+    """A ROS action: ``Goal``, ``Result`` and ``Feedback`` messages under one name, and the
+    types ROS 2 derives from them to carry an action over services and topics.
+
+    Subclasses set ``__ros_type__`` (``"example_interfaces/action/Fibonacci"``) and the six
+    parts: ``Goal``, ``Result``, ``Feedback`` (messages), ``SendGoal`` and ``GetResult``
+    (services), ``FeedbackMessage`` (a message). ``Impl`` holds them under rclpy's names
+    (``Fibonacci.Impl.SendGoalService``), with the action_msgs types every action shares.
+    """
+
+    __ros_type__: ClassVar[str] = ""
+    __ros_comment__: ClassVar[str] = ""
+    Goal: ClassVar[type[Message]]
+    Result: ClassVar[type[Message]]
+    Feedback: ClassVar[type[Message]]
+    SendGoal: ClassVar[type[ServiceType]]
+    GetResult: ClassVar[type[ServiceType]]
+    FeedbackMessage: ClassVar[type[Message]]
+    Impl: ClassVar[type]
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if cls.__dict__.get("__ros_type__"):
+            parts = {"Goal": Message, "Result": Message, "Feedback": Message, "SendGoal": ServiceType,
+                     "GetResult": ServiceType, "FeedbackMessage": Message}  # fmt: skip
+            for part, base in parts.items():
+                if not (isinstance(getattr(cls, part, None), type) and issubclass(getattr(cls, part), base)):
+                    raise TypeError(f"action {cls.__ros_type__} needs a {part} {base.__name__} class")
             _register(cls.__ros_type__, cls)

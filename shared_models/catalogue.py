@@ -1,5 +1,10 @@
 """Every message package of Skydeck, imported on first need so each type registers its name.
 
+Two kinds: the packages declared in Python (``MESSAGE_PACKAGES``, one module each:
+``shared_models/geometry_msgs.py``), and the packages of definition files Skydeck ships
+(``shared_models/packages/*``: the tutorials' ``example_interfaces``, ``turtlesim``..., and what
+actions need), read by the loader that reads a student's own (``shared_models/definitions/``).
+
 ``get_interface`` and ``interface_names`` load the catalogue; a process that only needs a
 few types (or none: the CLI's light verbs, the launcher) imports just those modules.
 """
@@ -34,7 +39,8 @@ _loaded = False
 
 
 def load_catalogue() -> None:
-    """Import every message package (once)."""
+    """Import every message package declared in Python (once); :func:`shared_models.all_interfaces`
+    also loads the shipped definition packages."""
     global _loaded
     if not _loaded:
         for package in MESSAGE_PACKAGES:

@@ -6,6 +6,8 @@ launcher and the CLI all descend from one class. The whole tree::
     SkydeckError                          http  close  raised when
     ├── InvalidNameError (ValueError)      404  1008   a topic/service/node name is not a ROS name
     ├── UnknownInterfaceError (LookupError)404  1008   a type name no message or service has
+    ├── DefinitionError (ValueError)       422  1008   a .msg/.srv/.action file cannot be read (file:line)
+    ├── DefinitionConflict (ValueError)    409  1008   another version of a type this process holds
     ├── FrameRejected                       -   its own  a client's frame or option cannot be taken
     ├── NodeError                          500  1011   a node used in a way it cannot honour
     ├── ParameterException                 400   -     a parameter used in a way the node cannot honour

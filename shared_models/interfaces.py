@@ -12,13 +12,31 @@ import difflib
 import typing
 from typing import Annotated, Any, ClassVar, get_args, get_origin
 
-from shared_models._message import Declared, Message, RosPrimitive, ServiceType, all_interfaces
+from shared_models._message import (
+    ActionType,
+    Declared,
+    Message,
+    RosPrimitive,
+    ServiceType,
+    registered,
+)
+from shared_models.catalogue import load_catalogue
 from shared_models.close_codes import Close
+from shared_models.definitions.index import index
+from shared_models.definitions.loader import load_any_package, load_package
 from shared_models.errors import SkydeckError
 
-__all__ = ["UnknownInterfaceError", "field_types", "get_interface", "interface_names", "interface_text"]
+__all__ = [
+    "UnknownInterfaceError",
+    "all_interfaces",
+    "field_types",
+    "get_interface",
+    "interface_names",
+    "interface_text",
+]
 
-Interface = type[Message] | type[ServiceType]
+Interface = type[Message] | type[ServiceType] | type[ActionType]
+_KINDS = ("msg", "srv", "action")
 
 
 class UnknownInterfaceError(SkydeckError, LookupError):
@@ -36,40 +54,59 @@ class UnknownInterfaceError(SkydeckError, LookupError):
         self.suggestions = suggestions
 
 
+def all_interfaces() -> dict[str, Interface]:
+    """Every message, service and action type by its full ROS name: the whole catalogue is
+    loaded (Skydeck's Python modules and its shipped definition packages; a workspace's packages
+    only once used)."""
+    load_catalogue()
+    for package in index.interface_packages(shipped=True):
+        load_package(package.name)
+    return registered()
+
+
 def _is_part(ros_type: str) -> bool:
-    """Whether ``ros_type`` is the request or response half of a service."""
-    return ros_type.endswith(("_Request", "_Response"))
+    """Whether ``ros_type`` is part of a service or an action (``Trigger_Request``,
+    ``Fibonacci_Goal``, ``Fibonacci_SendGoal``): ROS's type names have no ``_`` of their own."""
+    kind, _, name = ros_type.partition("/")[2].partition("/")
+    return ros_type.endswith(("_Request", "_Response")) or (kind == "action" and "_" in name)
 
 
 def get_interface(name: str) -> Interface:
     """The message or service class named ``name``.
 
-    Accepts ``"geometry_msgs/msg/PoseStamped"``, ROS 1's ``"geometry_msgs/PoseStamped"`` and
-    ``"std_srvs/srv/Trigger"``.
+    Accepts ``"geometry_msgs/msg/PoseStamped"``, ROS 1's ``"geometry_msgs/PoseStamped"``,
+    ``"std_srvs/srv/Trigger"`` and ``"example_interfaces/action/Fibonacci"``. A package of
+    definition files (shipped, or in a workspace this process knows) is loaded on first use.
 
     Example::
 
         get_interface("geometry_msgs/msg/Point")(x=1.0)
     """
-    known = all_interfaces()
     name = name.strip()
     parts = name.split("/")
     candidates = [name]
     if len(parts) == 2:
-        candidates = [f"{parts[0]}/msg/{parts[1]}", f"{parts[0]}/srv/{parts[1]}"]
-    for candidate in candidates:
-        if candidate in known:
-            return known[candidate]
+        candidates = [f"{parts[0]}/{kind}/{parts[1]}" for kind in _KINDS]
+    if len(parts) in (2, 3):  # only the package named: a process need not load every type
+        load_any_package(parts[0])
+        found = _first(candidates, registered(parts[0] + "/"))
+        if found is not None:
+            return found
+    known = all_interfaces()
+    found = _first(candidates, known)
+    if found is not None:
+        return found
     raise UnknownInterfaceError(name, _suggestions(name, known))
+
+
+def _first(candidates: list[str], known: dict[str, Interface]) -> Interface | None:
+    return next((known[candidate] for candidate in candidates if candidate in known), None)
 
 
 def _suggestions(name: str, known: dict[str, Interface]) -> list[str]:
     public = [ros_type for ros_type in known if not _is_part(ros_type)]
-    by_short = {
-        ros_type.lower().replace("/msg/", "/").replace("/srv/", "/"): ros_type
-        for ros_type in public
-    }
-    wanted = name.lower().replace("/msg/", "/").replace("/srv/", "/")
+    by_short = {_short(ros_type.lower()): ros_type for ros_type in public}
+    wanted = _short(name.lower())
     matches = [by_short[m] for m in difflib.get_close_matches(wanted, by_short, n=3, cutoff=0.75)]
     # A bare type name ("PoseStamped") matches on the part after the package.
     last = wanted.rsplit("/", 1)[-1]
@@ -79,25 +116,39 @@ def _suggestions(name: str, known: dict[str, Interface]) -> list[str]:
     return list(dict.fromkeys(matches))[:3]
 
 
-def interface_names(kind: str | None = None) -> list[str]:
-    """The sorted names of every registered type; ``kind`` ``"msg"`` or ``"srv"`` keeps one kind.
+def _short(ros_type: str) -> str:
+    return ros_type.replace("/msg/", "/").replace("/srv/", "/").replace("/action/", "/")
 
-    The request and response halves of services (``std_srvs/srv/Trigger_Request``) are left out.
+
+def interface_names(kind: str | None = None, *, package: str | None = None) -> list[str]:
+    """The sorted names of every registered type; ``kind`` ``"msg"``, ``"srv"`` or ``"action"``
+    keeps one kind, ``package`` one package (and loads only that one: shell completion).
+
+    The parts of services and actions (``std_srvs/srv/Trigger_Request``) are left out.
     """
-    if kind not in (None, "msg", "srv"):
-        raise ValueError(f"kind must be 'msg', 'srv' or None, not {kind!r}")
+    if kind not in (None, *_KINDS):
+        raise ValueError(f"kind must be 'msg', 'srv', 'action' or None, not {kind!r}")
+    if package is not None:
+        load_any_package(package)
+    known = registered(f"{package}/") if package is not None else all_interfaces()
     return sorted(
         ros_type
-        for ros_type in all_interfaces()
+        for ros_type in known
         if not _is_part(ros_type) and (kind is None or ros_type.split("/")[1] == kind)
     )
 
 
 def interface_text(name_or_cls: str | Interface) -> str:
     """The ``ros2 interface show`` text of a type: comment, constants, fields with nested types
-    indented by a tab per level; for a service the request, ``---`` and the response.
+    indented by a tab per level; for a service the request, ``---`` and the response; for an
+    action the goal, result and feedback.
     """
     cls = get_interface(name_or_cls) if isinstance(name_or_cls, str) else name_or_cls
+    if isinstance(cls, type) and issubclass(cls, ActionType):
+        lines = _message_lines(cls.Goal, comment=True)
+        for part in (cls.Result, cls.Feedback):
+            lines += ["---", *_message_lines(part, comment=True)]
+        return "\n".join(lines)
     if isinstance(cls, type) and issubclass(cls, ServiceType):
         lines = _comment_lines(cls.__ros_comment__)
         lines += _message_lines(cls.Request, comment=True)
@@ -106,7 +157,7 @@ def interface_text(name_or_cls: str | Interface) -> str:
         return "\n".join(lines)
     if isinstance(cls, type) and issubclass(cls, Message):
         return "\n".join(_message_lines(cls, comment=True))
-    raise TypeError(f"interface_text needs a message or service type, got {cls!r}")
+    raise TypeError(f"interface_text needs a message, service or action type, got {cls!r}")
 
 
 def field_types(cls: type[Message]) -> list[tuple[str, str, type[Message] | None]]:
@@ -137,7 +188,8 @@ def _message_lines(cls: type[Message], *, comment: bool, depth: int = 0) -> list
     for field_name, field in cls.model_fields.items():
         ros_type, nested = _field_type(cls, field_name, field.annotation, field.metadata, package)
         declared = any(isinstance(m, Declared) for m in field.metadata)
-        default = _default_text(field.default, declared=declared)
+        value = field.get_default(call_default_factory=True) if declared else field.default
+        default = _default_text(value, declared=declared)
         lines.append(f"{indent}{ros_type} {field_name}{default}")
         if nested is not None:
             lines += _message_lines(nested, comment=False, depth=depth + 1)
@@ -217,6 +269,9 @@ def _default_text(default: Any, *, declared: bool = False) -> str:
         return " " + _value_text(default)
     if isinstance(default, str) and (default or declared):
         return f' "{default}"'
+    if isinstance(default, list) and declared:  # an array's declared default (`int32[] a [1, 2]`)
+        items = (f'"{item}"' if isinstance(item, str) else _value_text(item) for item in default)
+        return f" [{', '.join(items)}]"
     return ""
 
 

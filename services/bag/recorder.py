@@ -18,6 +18,7 @@ from collections.abc import Callable
 
 from services.bag.recording import Limits, Recording, TopicSelection
 from services.bag.writer import BagWriter
+from services.runtime.core_types import interface_path, is_known, learn_definitions_reply
 from services.runtime.http_client import HttpError
 from services.runtime.node import Node
 from services.runtime.settings import NodeSettings
@@ -49,6 +50,7 @@ class Recorder(Node):
         self.recording = Recording(writer, selection, self._subscribe_raw, limits=limits or Limits(), say=say)
         self._say = say
         self._said_missing = False
+        self._types_checked: set[str] = set()  # known here, or asked of the core once
         self.create_timer(DISCOVERY_PERIOD_S, self._discover, wall_clock=True)
         self.create_timer(FLUSH_PERIOD_S, self._check_limits, wall_clock=True)
 
@@ -74,11 +76,27 @@ class Recorder(Node):
             return
         if reply.status != 200:
             return
-        self.recording.update(reply.json()["topics"])
+        topics = reply.json()["topics"]
+        await self._learn_types({topic.get("type") or "" for topic in topics})
+        self.recording.update(topics)
         missing = self.recording.missing()
         if missing and not self._said_missing:
             self._say(f"waiting for {', '.join(missing)} to appear")
             self._said_missing = True
+
+    async def _learn_types(self, type_names: set[str]) -> None:
+        """Types a node of the workspace declared (its own msg files) are asked of the core."""
+        for type_name in sorted(type_names - self._types_checked):
+            if not type_name or is_known(type_name):
+                self._types_checked.add(type_name)
+                continue
+            try:
+                reply = await self.http.get(self.settings.core_url + interface_path(type_name), timeout_s=2.0)
+            except HttpError as error:
+                logger.debug("type %s not asked: %s", type_name, error)
+                continue
+            self._types_checked.add(type_name)
+            learn_definitions_reply(reply.status, reply.json() if reply.status == 200 else None)
 
     def _check_limits(self) -> None:
         reason = self.recording.check_limits()

@@ -9,7 +9,15 @@ from pathlib import Path
 
 from services.cli.errors import CliError
 
-__all__ = ["known_type", "node_name", "positive_float", "positive_int", "ros_name", "writable_file"]
+__all__ = [
+    "known_type",
+    "node_name",
+    "positive_float",
+    "positive_int",
+    "ros_name",
+    "use_current_workspace",
+    "writable_file",
+]
 
 
 def positive_int(text: str) -> int:
@@ -75,10 +83,36 @@ def ros_name(text: str) -> str:
 
 
 def known_type(text: str):  # type: ignore[no-untyped-def]
-    """The message or service class named ``text``; CliError (with "did you mean") if none."""
+    """The message, service or action class named ``text``; CliError (with "did you mean") if
+    none. Besides Skydeck's types: the current folder's workspace packages, then the types the
+    core learned from its nodes (a workspace's own messages)."""
     from shared_models import UnknownInterfaceError, get_interface
 
+    use_current_workspace()
     try:
         return get_interface(text)
     except UnknownInterfaceError as error:
+        if _learn_from_core(text):
+            return known_type(text)
         raise CliError(str(error).splitlines()[0]) from None
+
+
+def use_current_workspace() -> None:
+    """Know the packages of the current folder's workspace, as a sourced ROS workspace is known."""
+    from shared_models.definitions.index import use_workspace
+
+    use_workspace(Path.cwd())
+
+
+def _learn_from_core(type_name: str) -> bool:
+    import httpx
+
+    from services.cli.core_client import auth_headers, core_url
+    from services.runtime.core_types import interface_path, is_known, learn_definitions_reply
+
+    try:
+        reply = httpx.get(core_url() + interface_path(type_name), headers=auth_headers(), timeout=5.0)
+        body = reply.json() if reply.status_code == 200 else None
+    except (httpx.HTTPError, ValueError):
+        return False  # no core: the type is unknown, as the caller says
+    return learn_definitions_reply(reply.status_code, body) and is_known(type_name)

@@ -13,7 +13,7 @@ import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from services.cli.arguments import positive_float, ros_name
+from services.cli.arguments import known_type, positive_float, ros_name
 from services.cli.core_client import core_url, get_json
 from services.cli.errors import CliError
 
@@ -175,6 +175,9 @@ def _play(args: argparse.Namespace) -> int:
     )
     with BagReader(args.file) as reader:
         _warn_if_recovered(reader)
+        for topic in reader.summary.topics:  # a workspace's own types: the folder's, or the core's
+            with contextlib.suppress(CliError):
+                known_type(topic.type_name)
         player = Player(reader, options, settings=_node_settings(), say=_say)
         check_types(get_json("/api/graph")["topics"], player.played_types)
         summary = reader.summary

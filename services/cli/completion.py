@@ -179,7 +179,8 @@ def _positional_values(parser: argparse.ArgumentParser, path: list[str], given: 
         from shared_models import interface_names
 
         wanted = "srv" if path[:1] == ["service"] else "msg" if path[:1] == ["topic"] else None
-        return [name for name in interface_names(wanted) if name.startswith(typed)]
+        package = typed.split("/", 1)[0] if "/" in typed else None  # only its package is loaded
+        return [name for name in interface_names(wanted, package=package) if name.startswith(typed)]
     if kind is not None:
         return _live(kind, typed)
     return []

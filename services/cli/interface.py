@@ -4,19 +4,20 @@ from __future__ import annotations
 
 import argparse
 
-from services.cli.arguments import known_type
+from services.cli.arguments import known_type, use_current_workspace
 from services.cli.formatting import to_yaml
 
 __all__ = ["add_parser"]
 
 
 def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    interface = subparsers.add_parser("interface", help="list and show message and service types")
+    interface = subparsers.add_parser("interface", help="list and show message, service and action types")
     verbs = interface.add_subparsers(dest="verb", required=True, metavar="VERB")
     p = verbs.add_parser("list", help="list every known type")
     kind = p.add_mutually_exclusive_group()
     kind.add_argument("-m", "--only-msgs", action="store_true", help="only message types")
     kind.add_argument("-s", "--only-srvs", action="store_true", help="only service types")
+    kind.add_argument("-a", "--only-actions", action="store_true", help="only action types")
     p.set_defaults(func=_list)
     p = verbs.add_parser("show", help="show a type's fields, nested types indented")
     p.add_argument("type", help="e.g. geometry_msgs/msg/PointStamped")
@@ -36,8 +37,13 @@ def _lookup(name: str):  # type: ignore[no-untyped-def]
 
 def _list(args: argparse.Namespace) -> int:
     from shared_models import interface_names
+    from shared_models.definitions.index import index
+    from shared_models.definitions.loader import load_package
 
-    kind = "msg" if args.only_msgs else "srv" if args.only_srvs else None
+    use_current_workspace()
+    for package in index.interface_packages(shipped=False):  # the workspace's own, as ROS lists them
+        load_package(package.name)
+    kind = "msg" if args.only_msgs else "srv" if args.only_srvs else "action" if args.only_actions else None
     for name in interface_names(kind):
         print(name)
     return 0
@@ -51,10 +57,12 @@ def _show(args: argparse.Namespace) -> int:
 
 
 def _proto(args: argparse.Namespace) -> int:
-    from shared_models import Message
+    from shared_models import ActionType, Message
 
     cls = _lookup(args.type)
-    if not issubclass(cls, Message):
+    if issubclass(cls, ActionType):
+        cls = cls.Goal
+    elif not issubclass(cls, Message):
         cls = cls.Request
     print(to_yaml(cls().model_dump(mode="json")))
     return 0

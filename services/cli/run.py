@@ -7,10 +7,14 @@ import importlib
 import runpy
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from services.builtin_nodes import BUILTIN_NODES
 from services.cli.errors import CliError
 from shared_models.errors import SkydeckError
+
+if TYPE_CHECKING:
+    from services.ros.workspace import Target
 
 __all__ = ["add_parsers"]
 
@@ -23,13 +27,23 @@ def add_parsers(subparsers: argparse._SubParsersAction[argparse.ArgumentParser])
 
     run = subparsers.add_parser(
         "run",
-        help=f"run one node: a built-in ({', '.join(BUILTIN_NODES)}) or a .py file (like rosrun)",
+        help=f"run one node: a built-in ({', '.join(BUILTIN_NODES)}), a .py file, or PKG EXECUTABLE (like ros2 run)",
         description=(
             "Flags after NODE that `run` does not know are passed to the node (e.g. sim's --seed). "
-            "`--ros-args -p NAME:=VALUE --params-file FILE.yaml` set the node's parameters, as in ROS 2."
+            "`--ros-args -p NAME:=VALUE --params-file FILE.yaml` set the node's parameters, as in ROS 2. "
+            "`skydeck run PKG EXECUTABLE` runs a workspace package's console script (ros2 run) or "
+            "script (rosrun)."
         ),
     )
-    run.add_argument("node", help=f"{' | '.join(BUILTIN_NODES)} | path/to/node.py")
+    run.add_argument("node", help=f"{' | '.join(BUILTIN_NODES)} | path/to/node.py | PKG EXECUTABLE")
+    run.add_argument(
+        "--workspace",
+        type=Path,
+        action="append",
+        metavar="DIR",
+        help="a ROS workspace (or folder of packages) to find packages and their msg/srv/action files in "
+        "(default: the current folder's src/, and the running file's)",
+    )
     _add_server_flags(run, default_port=None)
     run.add_argument("--core-url", help="where the core is (default: SKYDECK_CORE_URL or http://127.0.0.1:8000)")
     run.add_argument("--use-sim-time", action="store_true", help="follow /clock instead of the wall clock")
@@ -105,26 +119,50 @@ def _run(args: argparse.Namespace) -> int:
     if args.node in BUILTIN_NODES:
         module = importlib.import_module(BUILTIN_NODES[args.node])
         return int(module.main(node_argv) or 0)
+    from services.ros.workspace import file_target, package_target, workspace_of
+    from shared_models.definitions.index import use_workspace
+
     path = Path(args.node)
-    if path.suffix != ".py":
+    for folder in args.workspace or []:
+        if not folder.is_dir():
+            raise CliError(f"--workspace {folder}: no such folder")
+        use_workspace(folder)
+    if path.suffix == ".py":
+        if not path.is_file():
+            raise CliError(f"no such node file: {path}")
+        if (workspace := workspace_of(path)) is not None:
+            use_workspace(workspace)  # its siblings' msg/srv/action files
+        use_workspace(Path.cwd())
+        return _run_program(file_target(path), list(args.extra))
+    use_workspace(Path.cwd())
+    if not args.extra or args.extra[0].startswith("-"):
         raise CliError(
-            f"unknown node {args.node!r}: a built-in ({', '.join(BUILTIN_NODES)}) or a path to a .py file"
+            f"unknown node {args.node!r}: a built-in ({', '.join(BUILTIN_NODES)}), a path to a .py "
+            "file, or a workspace package and its executable (`skydeck run PKG EXECUTABLE`)"
         )
-    if not path.is_file():
-        raise CliError(f"no such node file: {path}")
-    return _run_file(path, list(args.extra))
+    executable, *argv = args.extra
+    return _run_program(package_target(args.node, executable), argv)
 
 
-def _run_file(path: Path, argv: list[str]) -> int:
-    """Run a node file as ``python3 FILE`` would, with ROS's module names importable
-    (``import rclpy``, ``from geometry_msgs.msg import Twist``: docs/ros.md)."""
+def _run_program(target: Target, argv: list[str]) -> int:
+    """Run a node program as ``python3 FILE`` (or ``ros2 run``) would, with ROS's module names
+    importable (``import rclpy``, ``from geometry_msgs.msg import Twist``: docs/ros.md): a plain
+    file as ``__main__``, a file of a Python package as its module (relative imports work), an
+    entry point by calling its function."""
     from services.ros import enable_ros_imports
 
     enable_ros_imports()
-    sys.argv = [str(path), *argv]  # with --ros-args, as ROS hands them to the program
-    sys.path.insert(0, str(path.resolve().parent))
+    sys.argv = [target.argv0, *argv]  # with --ros-args, as ROS hands them to the program
+    sys.path.insert(0, str(target.import_root))
+    if target.file is not None and target.file.parent != target.import_root:
+        sys.path.insert(1, str(target.file.parent))  # `import helpers` beside it, as python3 FILE
     try:
-        runpy.run_path(str(path), run_name="__main__")
+        if target.function is not None and target.module is not None:
+            return _exit_status(_entry_point(target.module, target.function)())
+        if target.module is not None:
+            runpy.run_module(target.module, run_name="__main__", alter_sys=True)
+        else:
+            runpy.run_path(str(target.file), run_name="__main__")
     except (KeyboardInterrupt, SystemExit, SkydeckError):
         raise  # Ctrl-C, the program's own exit, and Skydeck's one-line errors: main's
     except Exception as error:  # the program's own: its traceback, without Skydeck's frames
@@ -135,6 +173,24 @@ def _run_file(path: Path, argv: list[str]) -> int:
     finally:
         _stop_ros_nodes()
     return 0
+
+
+def _entry_point(module_name: str, function: str):  # type: ignore[no-untyped-def]
+    module = importlib.import_module(module_name)
+    found = getattr(module, function, None)
+    if not callable(found):
+        raise CliError(f"{module_name} has no function {function}() (its entry point names {module_name}:{function})")
+    return found
+
+
+def _exit_status(result: object) -> int:
+    """What a console script's function returned, as its exit status (``sys.exit(main())``)."""
+    if result is None:
+        return 0
+    if isinstance(result, int):
+        return result
+    print(result, file=sys.stderr)
+    return 1
 
 
 def _stop_ros_nodes() -> None:

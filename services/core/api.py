@@ -10,6 +10,7 @@ from pydantic import BaseModel
 from services.core.registry import Registry
 from services.runtime.wire import wire_description
 from shared_models import (
+    ActionType,
     Message,
     ServiceType,
     UnknownInterfaceError,
@@ -17,6 +18,7 @@ from shared_models import (
     interface_names,
     interface_text,
 )
+from shared_models.definitions.loader import definitions_of
 
 __all__ = ["router"]
 
@@ -120,11 +122,23 @@ async def interfaces() -> dict[str, Any]:
 
 @router.get("/interfaces/{name:path}", responses=_not_found("interface"))
 async def interface(name: str) -> dict[str, Any]:
-    """One type: its `interface show` text, JSON schema and default value."""
+    """One type: its `interface show` text, JSON schema, default value, and the definition files
+    of the types it needs that Skydeck does not ship (a node's own, by the type each declares)."""
     try:
         cls = get_interface(name)
     except UnknownInterfaceError as error:
         raise HTTPException(404, str(error)) from None
+    definitions = definitions_of([cls])
+    if isinstance(cls, type) and issubclass(cls, ActionType):
+        parts = {"goal": cls.Goal, "result": cls.Result, "feedback": cls.Feedback}
+        return {
+            "name": cls.__ros_type__,
+            "kind": "action",
+            "text": interface_text(cls),
+            "schema": {part: part_cls.model_json_schema() for part, part_cls in parts.items()},
+            "default": {part: part_cls().model_dump(mode="json") for part, part_cls in parts.items()},
+            "definitions": definitions,
+        }
     if isinstance(cls, type) and issubclass(cls, ServiceType):
         return {
             "name": cls.__ros_type__,
@@ -135,6 +149,7 @@ async def interface(name: str) -> dict[str, Any]:
                 "request": cls.Request().model_dump(mode="json"),
                 "response": cls.Response().model_dump(mode="json"),
             },
+            "definitions": definitions,
         }
     message: type[Message] = cls
     return {
@@ -143,4 +158,5 @@ async def interface(name: str) -> dict[str, Any]:
         "text": interface_text(message),
         "schema": message.model_json_schema(),
         "default": message().model_dump(mode="json"),
+        "definitions": definitions,
     }

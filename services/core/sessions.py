@@ -15,6 +15,7 @@ from services.runtime.auth import token_matches
 from services.runtime.edge.frames import close_with
 from services.runtime.protocol import (
     CoreFrameModel,
+    NodeDescription,
     RegisteredFrame,
     RegisterFrame,
     RejectedFrame,
@@ -23,6 +24,8 @@ from services.runtime.protocol import (
     node_frames,
 )
 from services.runtime.wire import Close
+from shared_models.definitions.errors import DefinitionConflict, DefinitionError
+from shared_models.definitions.loader import learn_definitions
 
 __all__ = ["serve_session"]
 
@@ -58,6 +61,9 @@ async def serve_session(websocket: WebSocket, registry: Registry, *, token: str 
         if not isinstance(first, RegisterFrame):
             await close_with(websocket, Close.INVALID_FRAME, "the first frame must be a register frame")
             return
+        if (refusal := _learn_types(first.node)) is not None:
+            await _refuse(websocket, writer, refusal)
+            return
         name = first.node.name
         outgoing.put_nowait(RegisteredFrame())
         replaced = registry.register(first.node, send)
@@ -74,6 +80,9 @@ async def serve_session(websocket: WebSocket, registry: Registry, *, token: str 
                 await close_with(websocket, Close.UNSUPPORTED, "session frames are JSON text, not binary")
                 return
             if isinstance(frame, UpdateFrame) and frame.node.name == name:
+                if (refusal := _learn_types(frame.node)) is not None:
+                    await _refuse(websocket, writer, refusal)
+                    return
                 registry.update(frame.node, send)
             elif isinstance(frame, StatsFrame):
                 registry.record_stats(name, frame.published)
@@ -86,6 +95,31 @@ async def serve_session(websocket: WebSocket, registry: Registry, *, token: str 
         if name is not None:
             registry.unregister(name, send)
             logger.info("node %s left", name)
+
+
+def _learn_types(node: NodeDescription) -> str | None:
+    """Learn the definitions of the node's own types (so every client of the core knows them);
+    the reason to refuse the node when one cannot be read or differs from the known one."""
+    if not node.interfaces:
+        return None
+    try:
+        learned = learn_definitions(node.interfaces, source=f"node {node.name}")
+    except (DefinitionError, DefinitionConflict) as error:
+        logger.warning("refused node %s: %s", node.name, error)
+        return str(error)
+    if learned:
+        logger.info("learned %s from node %s", ", ".join(learned), node.name)
+    return None
+
+
+async def _refuse(websocket: WebSocket, writer: asyncio.Task[None], reason: str) -> None:
+    """Tell the node why it is refused (it stops, saying so), then close."""
+    writer.cancel()
+    with contextlib.suppress(asyncio.CancelledError):
+        await writer
+    with contextlib.suppress(WebSocketDisconnect, RuntimeError, OSError):
+        await websocket.send_text(RejectedFrame(reason=reason).model_dump_json())
+    await close_with(websocket, Close.POLICY, reason)
 
 
 def _log_refusal(websocket: WebSocket) -> None:

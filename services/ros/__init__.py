@@ -34,10 +34,9 @@ def enable_ros_imports() -> None:
 
 def disable_ros_imports() -> None:
     """Undo :func:`enable_ros_imports` and forget the ROS-named modules it imported (tests)."""
-    from services.ros.imports import FACADES, RosImportFinder
-    from shared_models.catalogue import MESSAGE_PACKAGES
+    from services.ros.imports import FACADES, RosImportFinder, package_names
 
     sys.meta_path[:] = [f for f in sys.meta_path if not isinstance(f, RosImportFinder)]
-    tops = set(FACADES) | set(MESSAGE_PACKAGES)
+    tops = set(FACADES) | package_names()
     for name in [n for n in sys.modules if n.partition(".")[0] in tops]:
         del sys.modules[name]

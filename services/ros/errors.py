@@ -4,8 +4,10 @@
     └── RosFacadeError
         ├── UnknownMessagePackageError (ImportError)   `import foo_msgs.msg`: no such message package
         ├── UnknownMessageError (ImportError)          `from std_msgs.msg import Foo`: no such type
-        └── NotProvidedError (NotImplementedError)     a ROS API the façades do not provide
-            └── NotProvidedImportError (ImportError)   ... met at an import (`import rclpy.action`)
+        ├── NotProvidedError (NotImplementedError)     a ROS API the façades do not provide
+        │   └── NotProvidedImportError (ImportError)   ... met at an import (`import rclpy.action`)
+        ├── SetupFileError                             a package's setup.py/setup.cfg cannot be read
+        └── PackageTargetError (LookupError)           `skydeck run PKG EXE`: no such package or executable
 
 Each is printed by ``skydeck run`` as one line (``skydeck: error: ...``), never a traceback into
 Skydeck's code; each also is the built-in class a ROS program would catch.

@@ -8,6 +8,10 @@ processes that ``skydeck run`` starts.
     geometry_msgs.msg          -> a view of shared_models.geometry_msgs: its geometry_msgs/msg/* types
     std_srvs.srv               -> its std_srvs/srv/* types, with ROS 1's TriggerRequest/TriggerResponse
                                   and ROS 2's Trigger_Request/Trigger_Response spellings
+    example_interfaces.action  -> its actions (Fibonacci, with .Goal, .Result, .Feedback, .Impl)
+    my_pkg.msg                 -> the types of my_pkg's msg/*.msg files, loaded on first import,
+                                  for a package of definition files Skydeck ships or that is in
+                                  the workspace (shared_models.definitions)
 
 One type system: a view's attributes ARE the ``shared_models`` classes. The finder sits first on
 ``sys.meta_path`` for these names only (inside a Skydeck process Skydeck is the ROS); for any
@@ -35,10 +39,12 @@ from services.ros.errors import (
     not_provided,
 )
 from services.ros.extras import EXTRAS, check_extra
-from shared_models._message import Message, ServiceType
+from shared_models._message import ActionType, Message, ServiceType, registered
 from shared_models.catalogue import MESSAGE_PACKAGES
+from shared_models.definitions.index import index
+from shared_models.definitions.loader import load_any_package
 
-__all__ = ["ADAPTED", "FACADES", "RosImportFinder", "message_view"]
+__all__ = ["ADAPTED", "FACADES", "RosImportFinder", "message_view", "package_names"]
 
 # A ROS Python package's name -> the façade that imitates it.
 FACADES = {
@@ -52,7 +58,8 @@ FACADES = {
 }
 # A real module -> the Skydeck module whose ``install(module)`` adapts it once it has loaded.
 ADAPTED = {"cv2": "services.ros.highgui"}  # OpenCV's windows in the dashboard
-_KINDS = ("msg", "srv")
+_KINDS = {"msg": Message, "srv": ServiceType, "action": ActionType}
+_KIND_WORDS = {"msg": "messages", "srv": "services", "action": "actions"}
 # ROS Python packages a course meets that are not message packages and that Skydeck lacks.
 _NOT_PROVIDED = frozenset(
     {
@@ -78,7 +85,20 @@ _PACKAGE_SUFFIXES = ("_msgs", "_srvs", "_interfaces", "_msg", "_srv", "_action")
 
 
 def _known() -> str:
-    return ", ".join(MESSAGE_PACKAGES)
+    return ", ".join([*MESSAGE_PACKAGES, *sorted(package_names() - set(MESSAGE_PACKAGES))])
+
+
+def package_names() -> set[str]:
+    """Every message package this process can import: Skydeck's, and the definition packages
+    it ships or finds in the workspace."""
+    return set(MESSAGE_PACKAGES) | {package.name for package in index.interface_packages()}
+
+
+def _is_message_package(name: str) -> bool:
+    if name in MESSAGE_PACKAGES:
+        return True
+    package = index.find(name)
+    return package is not None and package.has_interfaces
 
 
 class _AliasLoader(importlib.abc.Loader):
@@ -125,7 +145,7 @@ class _AdaptingLoader(importlib.abc.Loader):
 
 
 class _ViewLoader(importlib.abc.Loader):
-    """Loads a message package (an empty package) or one of its ``msg``/``srv`` views."""
+    """Loads a message package (an empty package) or one of its ``msg``/``srv``/``action`` views."""
 
     def __init__(self, package: str, kind: str | None) -> None:
         self.package = package
@@ -133,13 +153,26 @@ class _ViewLoader(importlib.abc.Loader):
 
     def create_module(self, spec: importlib.machinery.ModuleSpec) -> types.ModuleType:
         if self.kind is None:
-            module = types.ModuleType(spec.name, f"The ROS package {self.package}: its .msg and .srv types.")
+            module = _PackageModule(spec.name, f"The ROS package {self.package}: its msg, srv and action types.")
             module.__path__ = []
             return module
         return message_view(self.package, self.kind)
 
     def exec_module(self, module: types.ModuleType) -> None:
         pass
+
+
+class _PackageModule(types.ModuleType):
+    """A message package itself; for a name that is also a ROS API Skydeck lacks (``actionlib``,
+    whose ``actionlib.msg`` it has), that API's names are one line saying so."""
+
+    def __getattr__(self, name: str) -> Any:
+        if self.__name__ in _NOT_PROVIDED and not name.startswith("__"):
+            text = not_provided(f"`{self.__name__}.{name}`")
+            if _called_by_import_from(sys._getframe(1)):
+                raise NotProvidedImportError(text)
+            raise AttributeError(text)
+        raise AttributeError(f"module {self.__name__!r} has no attribute {name!r}")
 
 
 class _MessageView(types.ModuleType):
@@ -169,22 +202,19 @@ def _called_by_import_from(frame: types.FrameType) -> bool:
 
 
 def message_view(package: str, kind: str) -> types.ModuleType:
-    """The module ``package.kind`` (``geometry_msgs.msg``): every ``package/kind/*`` type of
-    ``shared_models.package`` under its ROS name (and, for a service's parts, ROS 1's name)."""
-    source = importlib.import_module(f"shared_models.{package}")
-    view = _MessageView(f"{package}.{kind}", f"The {package}/{kind} types (views of shared_models.{package}).")
+    """The module ``package.kind`` (``geometry_msgs.msg``): every ``package/kind/*`` type under
+    its ROS name (and, for the parts of a service or action, ROS 1's name), from the package's
+    module in shared_models or its definition files."""
+    load_any_package(package)
+    view = _MessageView(f"{package}.{kind}", f"The {package}/{kind} types (views of Skydeck's types).")
     view._skydeck_package = package
     prefix = f"{package}/{kind}/"
-    for value in vars(source).values():
-        if not (isinstance(value, type) and issubclass(value, Message | ServiceType)):
-            continue
-        ros_type = value.__dict__.get("__ros_type__", "")
-        if ros_type.startswith(prefix):
-            setattr(view, ros_type[len(prefix) :], value)  # Trigger, Trigger_Request
-            setattr(view, value.__name__, value)  # TriggerRequest (ROS 1), usually the same
+    for ros_type, value in sorted(registered(prefix).items()):
+        setattr(view, ros_type[len(prefix) :], value)  # Trigger, Trigger_Request
+        setattr(view, value.__name__, value)  # TriggerRequest (ROS 1), usually the same
     view.__all__ = sorted(n for n in vars(view) if n[:1].isupper())  # type: ignore[attr-defined]
-    if kind == "srv" and not any(isinstance(v, type) and issubclass(v, ServiceType) for v in vars(view).values()):
-        raise UnknownMessageError(f"`{package}` has no services in Skydeck (no `{package}.srv`)")
+    if kind != "msg" and not any(isinstance(v, type) and issubclass(v, _KINDS[kind]) for v in vars(view).values()):
+        raise UnknownMessageError(f"`{package}` has no {_KIND_WORDS[kind]} in Skydeck (no `{package}.{kind}`)")
     return view
 
 
@@ -202,9 +232,11 @@ class RosImportFinder(importlib.abc.MetaPathFinder):
             check_extra(top)  # one line if the extra (OpenCV...) is not installed; else on as usual
         if fullname in ADAPTED and fullname not in self._adapting:
             return self._adapted_spec(fullname, path, target)
-        if top in FACADES:
+        if top in FACADES and not (rest.partition(".")[0] in _KINDS and _is_message_package(top)):
             return self._facade_spec(fullname, FACADES[top] + (f".{rest}" if rest else ""))
-        if top in MESSAGE_PACKAGES:
+        if _is_message_package(top):  # (a façade's own messages too: actionlib.msg)
+            if not rest and top not in MESSAGE_PACKAGES and self._found_elsewhere(fullname, path, target):
+                return None  # a catkin package's own Python module of the same name: its .msg is ours
             return self._view_spec(top, rest)
         looks_like_ros = top in _NOT_PROVIDED or top.endswith(_PACKAGE_SUFFIXES)
         if rest or not looks_like_ros or self._found_elsewhere(fullname, path, target):
@@ -236,10 +268,10 @@ class RosImportFinder(importlib.abc.MetaPathFinder):
     def _view_spec(self, package: str, kind: str) -> importlib.machinery.ModuleSpec:
         if not kind:
             return importlib.machinery.ModuleSpec(package, _ViewLoader(package, None), is_package=True)
-        if kind == "action":
-            raise NotProvidedImportError(not_provided(f"`{package}.action` (ROS actions)"))
+        if kind not in _KINDS and package in _NOT_PROVIDED:  # `from actionlib import SimpleActionClient`
+            raise NotProvidedImportError(not_provided(f"`{package}.{kind}`"))
         if kind not in _KINDS:
-            raise UnknownMessageError(f"`{package}.{kind}`: a message package has .msg and .srv modules only")
+            raise UnknownMessageError(f"`{package}.{kind}`: a message package has .msg, .srv and .action modules only")
         return importlib.machinery.ModuleSpec(f"{package}.{kind}", _ViewLoader(package, kind))
 
     def _found_elsewhere(

@@ -23,6 +23,7 @@ from services.runtime.settings import ProcessSettings
 from services.runtime.subscription import RawSubscription
 from services.runtime.wire import MAX_QUEUE
 from shared_models import Message, resolve_name
+from shared_models.definitions.loader import definitions_of
 
 __all__ = ["Participant"]
 
@@ -104,6 +105,7 @@ class Participant:
             if endpoint.subscribed:
                 subscriptions.append(entity)
         services = [Entity(name=s.name, type=s.srv_type.__ros_type__) for s in self.services.values()]
+        types = [e.msg_type for e in self.endpoints.values() if e.msg_type is not None]
         return NodeDescription(
             name=self.name,
             url=self.url,
@@ -111,6 +113,7 @@ class Participant:
             publications=publications,
             subscriptions=subscriptions,
             services=services,
+            interfaces=definitions_of([*types, *(s.srv_type for s in self.services.values())]),
         )
 
     def published_counts(self) -> dict[str, int]:

@@ -55,6 +55,10 @@ class NodeDescription(_Frame):
     publications: list[Entity] = []
     subscriptions: list[Entity] = []
     services: list[Entity] = []
+    # The definition files of the types its entities use that Skydeck does not ship (a
+    # workspace's msg/srv/action), by the type each declares ("my_pkg/msg/Status": "int32 x\n"):
+    # how the core, the dashboard, rosbridge, Foxglove and bags learn a node's own types.
+    interfaces: dict[str, str] = {}
 
 
 class RegisterFrame(_Frame):

@@ -105,7 +105,6 @@ def test_unknown_type_in_a_known_package() -> None:
     [
         ("rclpy.action", "`rclpy.action` is a ROS API Skydeck does not provide (yet)"),
         ("message_filters", "`message_filters` is a ROS API Skydeck does not provide"),
-        ("geometry_msgs.action", "`geometry_msgs.action` (ROS actions)"),
     ],
 )
 def test_apis_not_provided_name_themselves(module: str, message: str) -> None:
@@ -173,3 +172,8 @@ def test_skydeck_run_imports_messages_for_a_plain_script(tmp_path: Path) -> None
         "print(Pose(Point(1, 2, 3), Quaternion(0, 0, 0, 1)).position.y)\n",
     )
     assert result.returncode == 0 and result.stdout == "2.0\n", result.stderr
+
+
+def test_a_package_without_actions_says_so() -> None:
+    with pytest.raises(UnknownMessageError, match=r"`geometry_msgs` has no actions in Skydeck \(no `geometry_msgs.action`\)"):
+        importlib.import_module("geometry_msgs.action")

@@ -12,6 +12,7 @@ from shared_models import (
     interface_names,
     interface_text,
 )
+from shared_models.catalogue import MESSAGE_PACKAGES
 from shared_models.geometry_msgs import PoseStamped
 from shared_models.std_srvs import Trigger, TriggerRequest
 
@@ -57,7 +58,8 @@ def test_interface_names() -> None:
     assert "std_srvs/srv/Trigger" in names
     assert not [name for name in names if name.endswith(("_Request", "_Response"))]
     assert {"rosapi_msgs/srv/Topics", "rosapi_msgs/srv/GetTime"} <= set(interface_names("srv"))
-    assert [name for name in interface_names("srv") if not name.startswith("rosapi_msgs/")] == [
+    python_declared = [name for name in interface_names("srv") if name.split("/")[0] in MESSAGE_PACKAGES]
+    assert [name for name in python_declared if not name.startswith("rosapi_msgs/")] == [
         "rcl_interfaces/srv/DescribeParameters",
         "rcl_interfaces/srv/GetParameterTypes",
         "rcl_interfaces/srv/GetParameters",
@@ -72,9 +74,11 @@ def test_interface_names() -> None:
         "std_srvs/srv/Trigger",
     ]
     assert all("/msg/" in name for name in interface_names("msg"))
-    assert sorted(interface_names("msg") + interface_names("srv")) == names
+    assert "example_interfaces/srv/AddTwoInts" in interface_names("srv")  # shipped as definition files
+    assert interface_names("action")[:1] == ["actionlib/action/Test"]
+    assert sorted(interface_names("msg") + interface_names("srv") + interface_names("action")) == names
     with pytest.raises(ValueError, match="kind"):
-        interface_names("action")
+        interface_names("actions")
 
 
 POINT_STAMPED = """\

@@ -326,7 +326,13 @@ ROS_FIELDS: dict[str, list[str]] = {
     "rosapi_msgs/srv/Topics_Response": ["topics", "types"],
 }
 
-MESSAGES = {name: cls for name, cls in all_interfaces().items() if issubclass(cls, Message)}
+# The types declared in Python; those of definition files are checked against their files in
+# tests/shared_models/test_definition_packages.py.
+MESSAGES = {
+    name: cls
+    for name, cls in all_interfaces().items()
+    if issubclass(cls, Message) and not cls.__dict__.get("__ros_definition__")
+}
 
 
 def test_every_registered_message_has_its_ros_fields_listed_here() -> None:
@@ -344,7 +350,11 @@ def test_default_instance_round_trips_through_json_with_ros_keys(ros_type: str) 
 
 
 def test_services_are_registered_with_their_parts() -> None:
-    services = {name: cls for name, cls in all_interfaces().items() if issubclass(cls, ServiceType)}
+    services = {
+        name: cls
+        for name, cls in all_interfaces().items()
+        if issubclass(cls, ServiceType) and not cls.__dict__.get("__ros_definition__")
+    }
     assert sorted(services) == [
         "rcl_interfaces/srv/DescribeParameters",
         "rcl_interfaces/srv/GetParameterTypes",
@@ -518,6 +528,7 @@ class TestValidation:
 def test_public_api_is_pinned() -> None:
     assert sorted(shared_models.__all__) == sorted(
         [
+            "ActionType",
             "Message",
             "ServiceType",
             "all_interfaces",
