@@ -22,7 +22,7 @@ from pydantic import ValidationError
 
 from services.runtime import Node, NodeSettings
 from services.runtime.parameters import InvalidParameterValueException
-from services.runtime.settings import process_settings
+from services.runtime.settings import node_settings
 from shared_models.builtin_interfaces import Time
 from shared_models.rcl_interfaces import IntegerRange, ParameterDescriptor
 from shared_models.ros_workshop import SimWorld
@@ -68,7 +68,7 @@ class WorldNode(Node):
         settings: NodeSettings | None,
         build: Callable[[SimSettings], SteppedWorld],
     ) -> None:
-        super().__init__("sim", settings=settings or process_settings(NodeSettings, port=DEFAULT_PORT))
+        super().__init__("sim", settings=settings or node_settings().with_default_port(DEFAULT_PORT))
         self.sim = sim
         self.sim = self._declare_world_parameters()
         self.world = build(self.sim)

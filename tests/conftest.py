@@ -13,9 +13,9 @@ import httpx
 import pytest
 import uvicorn
 
-from services.core.app import create_app
 from services.core.server import core_config
-from services.core.settings import CoreSettings
+from services.protocols.core_process import create_core_app
+from services.protocols.settings import CoreProcessSettings
 from services.runtime import Node, NodeSettings
 from services.runtime.ports import free_port_block
 
@@ -107,7 +107,8 @@ async def await_registered(core_url: str, names: set[str], timeout_s: float) -> 
 
 
 class CoreProcess:
-    """A real core on uvicorn, served from the test's event loop; can be stopped and restarted."""
+    """A real core on uvicorn, served from the test's event loop; can be stopped and restarted.
+    It is what ``skydeck core`` runs: the core with the protocol endpoints plugged in."""
 
     def __init__(
         self, port: int | None = None, *, endpoint_sockets: dict[str, socket.socket] | None = None, **settings: object
@@ -121,14 +122,14 @@ class CoreProcess:
             port = self._socket.getsockname()[1]
         self.port: int = port
         settings = {"rosbridge_port": 0, "foxglove_port": 0, **settings}  # endpoints off unless asked for
-        self.settings = CoreSettings(host="127.0.0.1", port=self.port, **settings)  # type: ignore[arg-type]
+        self.settings = CoreProcessSettings(host="127.0.0.1", port=self.port, **settings)  # type: ignore[arg-type]
         self.url = f"http://127.0.0.1:{self.port}"
         self.app = None
         self._server: uvicorn.Server | None = None
         self._task: asyncio.Task[None] | None = None
 
     async def start(self) -> None:
-        self.app = create_app(self.settings, endpoint_sockets=self._endpoint_sockets)
+        self.app = create_core_app(self.settings, sockets=self._endpoint_sockets)
         self._endpoint_sockets = None  # the app's now; a restart binds the settings' ports
         self._server = uvicorn.Server(core_config(self.app, self.settings))
         sock = self._socket if self._socket is not None else await held_again(self.port)

@@ -26,10 +26,11 @@ import yaml
 
 from services.builtin_nodes import BUILTIN_NODES
 from services.cli.main import build_parser
-from services.core.protocols.servers import bind_endpoints
-from services.core.settings import CoreSettings
 from services.launch.plan import LaunchOptions, plan_launch
 from services.launch.spec import find_launch_file, load_launch_file
+from services.protocols.core_process import bind_endpoints
+from services.protocols.endpoints import ENDPOINTS
+from services.protocols.settings import CoreProcessSettings
 from services.runtime.ports import free_port_block
 from sim_server.node import SimSettings
 from tests.compose_config import (
@@ -110,7 +111,7 @@ def _flag(command: list[Any], flag: str) -> str | None:
 
 def test_docker_compose_config_accepts_the_file() -> None:
     resolved = resolve("drone")
-    assert set(resolved["services"]) == set(PORTS)
+    assert set(started_services(resolved)) == set(PORTS)
     sim = resolved["services"]["sim"]
     assert sim["environment"]["SKYDECK_SIM_SPEED"] == "1" and _flag(sim["command"], "--boxes") == "8"
 
@@ -161,8 +162,8 @@ def test_each_command_starts_what_its_launch_file_starts(
 
 
 def test_published_ports_are_the_cores_on_loopback(started: dict[str, dict[str, Any]]) -> None:
-    # The core's own, and its rosbridge and Foxglove endpoints (CoreSettings' defaults).
-    expected = {"127.0.0.1:8000:8000", "127.0.0.1:9090:9090", "127.0.0.1:8765:8765"}
+    # The core's own, and each protocol endpoint's default port (the table of endpoints).
+    expected = {"127.0.0.1:8000:8000", *(f"127.0.0.1:{e.default_port}:{e.default_port}" for e in ENDPOINTS)}
     assert sorted(published_ports(started["core"])) == sorted(expected)  # an override may reorder them
     for name, service in started.items():
         if name != "core":
@@ -192,14 +193,11 @@ def test_the_cores_endpoints_listen_where_the_core_does(started: dict[str, dict[
     # Published container ports reach only sockets on the container's every interface: the core's
     # --host (0.0.0.0) must be the endpoints' too. Bound on free ports, and closed, never served.
     args, _ = _command(started["core"])
-    base = free_port_block(2)
-    settings = CoreSettings(host=args.host, port=0, rosbridge_port=base, foxglove_port=base + 1)
-    sockets = bind_endpoints(settings)
+    base = free_port_block(len(ENDPOINTS))
+    ports = {endpoint.setting: base + index for index, endpoint in enumerate(ENDPOINTS)}
+    sockets = bind_endpoints(CoreProcessSettings(host=args.host, port=0, **ports))
     try:
-        assert {name: sock.getsockname()[0] for name, sock in sockets.items()} == {
-            "rosbridge": "0.0.0.0",
-            "foxglove": "0.0.0.0",
-        }
+        assert {name: sock.getsockname()[0] for name, sock in sockets.items()} == {e.name: "0.0.0.0" for e in ENDPOINTS}
     finally:
         for sock in sockets.values():
             sock.close()
@@ -224,6 +222,7 @@ def test_the_readme_shows_each_command_on_one_line() -> None:
 
 
 def test_the_five_processes_from_one_image(services: dict[str, dict[str, Any]]) -> None:
+    services = {name: service for name, service in services.items() if not service.get("profiles")}
     assert set(services) == set(PORTS)
     assert {service["image"] for service in services.values()} == {"skydeck:local"}
     assert {str(service["build"]) for service in services.values()} == {"."}
@@ -241,6 +240,19 @@ def test_the_ai_keeps_its_progress_in_a_named_volume(
 
 
 # -- commands: what the CLI and the nodes accept --------------------------------------------------
+
+
+def test_the_ros2_profile_adds_the_bridge_from_an_image_with_the_extra(
+    services: dict[str, dict[str, Any]], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    bridge = services["ros2_bridge"]
+    assert bridge["profiles"] == ["ros2"] and bridge["image"] == "skydeck:ros2"
+    assert bridge["build"]["args"]["SKYDECK_EXTRAS"] == "ros2"
+    assert "ARG SKYDECK_EXTRAS" in DOCKERFILE.read_text()
+    args, extra = _command(bridge)
+    assert (args.command, args.node, args.port, args.core_url) == ("run", "ros2_bridge", 8005, CORE_URL)
+    assert health_url(bridge) == "http://127.0.0.1:8005/health"
+    _assert_node_accepts("ros2_bridge", extra, monkeypatch)
 
 
 def test_core_command(services: dict[str, dict[str, Any]]) -> None:
@@ -357,7 +369,7 @@ def test_the_images_wheel_carries_both_worlds_and_the_endpoints(tmp_path: Path) 
     assert built.returncode == 0, built.stderr
     (wheel,) = tmp_path.glob("*.whl")
     names = set(zipfile.ZipFile(wheel).namelist())
-    modules = [*BUILTIN_NODES.values(), "services.core.app", "services.core.protocols.servers", "sim_server.robot.node"]
+    modules = [*BUILTIN_NODES.values(), "services.core.app", "services.protocols.core_process", "sim_server.robot.node"]
     wanted = {module.replace(".", "/") + ".py" for module in modules}
     wanted |= {f"services/launch/{name}.yaml" for name in LAUNCH_FILE.values()}
     static = ROOT / "web_ui" / "static"

@@ -35,6 +35,7 @@ from websockets.asyncio.client import connect
 from websockets.typing import Subprotocol
 
 from services.launch.background import BackgroundProcess
+from services.protocols.endpoints import ENDPOINTS, endpoint_named
 from services.runtime.ports import free_port_block
 from tests.compose_config import (
     DOCKERFILE,
@@ -45,14 +46,13 @@ from tests.compose_config import (
     started_services,
 )
 from tests.conftest import await_registered
-from tests.services.core.protocols.test_foxglove import binary
-from tests.services.core.protocols.test_foxglove import receive as foxglove_receive
-from tests.services.core.protocols.test_rosbridge import call as rosbridge_call
+from tests.services.protocols.test_foxglove import binary
+from tests.services.protocols.test_foxglove import receive as foxglove_receive
+from tests.services.protocols.test_rosbridge import call as rosbridge_call
 
 pytestmark = [pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(180)]
 
 TOKEN = "c0ntainer-t0ken"
-ENDPOINT_FLAGS = ("--rosbridge-port", "--foxglove-port")
 HEALTHY_WITHIN_S = 60.0  # the compose file's start_period (30 s), on a busy shared machine
 REGISTERED_WITHIN_S = 30.0
 FOXGLOVE = [Subprotocol("foxglove.websocket.v1")]
@@ -79,8 +79,7 @@ class Deployment:
 
     variant: str  # "drone" or "robot": the world the simulator runs
     containers: dict[str, Container]
-    rosbridge_port: int
-    foxglove_port: int
+    endpoint_ports: dict[str, int]  # by endpoint name (the table of endpoints)
 
     @property
     def core(self) -> Container:
@@ -116,8 +115,9 @@ def loopback_argv(container: Container, urls: dict[str, str], endpoints: dict[st
             word = word.replace(inside, here)
         argv.append(word)
     if argv[0] == "core":
-        assert not set(ENDPOINT_FLAGS) & set(argv), "the core's endpoints keep their defaults in the container"
-        argv += [word for flag, port in endpoints.items() for word in (flag, str(port))]
+        flags = {endpoint.flag for endpoint in ENDPOINTS}
+        assert not flags & set(argv), "the core's endpoints keep their defaults in the container"
+        argv += [word for name, port in endpoints.items() for word in (endpoint_named(name).flag, str(port))]
     return [sys.executable, "-m", "services.cli", *argv]
 
 
@@ -145,10 +145,9 @@ def run_healthcheck(container: Container) -> None:
 def deployment(request: pytest.FixtureRequest, tmp_path: Path) -> Iterator[Deployment]:
     """The variant's ``up`` with ``SKYDECK_TOKEN`` set, each service a process on loopback."""
     services = started_services(resolve(request.param, env={"SKYDECK_TOKEN": TOKEN}))
-    base = free_port_block(len(services) + len(ENDPOINT_FLAGS))
+    base = free_port_block(len(services) + len(ENDPOINTS))
     containers = {name: Container(name, service, base + index) for index, (name, service) in enumerate(services.items())}
-    rosbridge_port, foxglove_port = base + len(services), base + len(services) + 1
-    endpoints = dict(zip(ENDPOINT_FLAGS, (rosbridge_port, foxglove_port), strict=True))
+    endpoints = {endpoint.name: base + len(services) + index for index, endpoint in enumerate(ENDPOINTS)}
     urls = {f"http://{c.name}:{container_port(c.service)}": c.url for c in containers.values()}
     image_env = image_environment(tmp_path)
     # The core first; the rest depend on a healthy core (checked in tests/test_containers.py).
@@ -162,7 +161,7 @@ def deployment(request: pytest.FixtureRequest, tmp_path: Path) -> Iterator[Deplo
             if name == "core":
                 container.process.wait_healthy(f"{container.url}/health", HEALTHY_WITHIN_S)
                 run_healthcheck(container)
-        yield Deployment(request.param, containers, rosbridge_port, foxglove_port)
+        yield Deployment(request.param, containers, endpoints)
     finally:
         for name in reversed(order):
             process = containers[name].process
@@ -196,13 +195,13 @@ async def test_every_service_comes_up_healthy_registered_and_guarded(deployment:
 async def _call_through_the_endpoints(deployment: Deployment) -> None:
     """rosbridge and Foxglove, on the ports the container publishes as 9090 and 8765, check
     the core's token: a call to the simulator is refused without it and answered with it."""
-    async with connect(f"ws://127.0.0.1:{deployment.rosbridge_port}") as ws:
+    async with connect(f"ws://127.0.0.1:{deployment.endpoint_ports['rosbridge']}") as ws:
         refused = await rosbridge_call(ws, PROBE, "without")
         assert refused["result"] is False and "need the token" in refused["values"]
         await ws.send(json.dumps({"op": "auth", "mac": TOKEN}))
         answered = await rosbridge_call(ws, PROBE, "with")
         assert answered["result"] is True, answered
-    foxglove = f"ws://127.0.0.1:{deployment.foxglove_port}"
+    foxglove = f"ws://127.0.0.1:{deployment.endpoint_ports['foxglove']}"
     for call_id, url in enumerate((foxglove, f"{foxglove}/?token={TOKEN}")):
         async with connect(url, subprotocols=FOXGLOVE) as ws:
             services = {s["name"]: s["id"] for s in (await foxglove_receive(ws, "advertiseServices"))["services"]}

@@ -36,7 +36,7 @@ from services.ai.landing import (
     landing_spot,
 )
 from services.ai.planner import plan_tour
-from services.ai.progress import ProgressStore, WorldProgress, default_state_dir
+from services.ai.progress import ProgressStore, WorldProgress
 from services.ai.world import WorldTracker
 from services.runtime import (
     Client,
@@ -47,7 +47,7 @@ from services.runtime import (
     ServiceUnavailableError,
     spin,
 )
-from services.runtime.settings import process_settings, settings_from_flags
+from services.runtime.settings import node_settings, settings_from_flags
 from shared_models import Message
 from shared_models.errors import SkydeckError
 from shared_models.geometry_msgs import Point, Polygon, PoseStamped
@@ -114,7 +114,7 @@ class AiNode(Node):
         ai: AiSettings | None = None,
         store: ProgressStore | None = None,
     ) -> None:
-        super().__init__("ai", settings=settings or process_settings(NodeSettings, port=DEFAULT_PORT))
+        super().__init__("ai", settings=settings or node_settings().with_default_port(DEFAULT_PORT))
         self.ai = ai or AiSettings()
         # The landing policy is a parameter too (`-p landing:=home`, `skydeck param set /ai landing
         # home`), its default the flag's; a new value applies from the next tour planned.
@@ -127,7 +127,7 @@ class AiNode(Node):
                 additional_constraints=f"one of: {', '.join(LANDING_POLICIES)}",
             ),
         )
-        self.store = store or ProgressStore(default_state_dir(), warn=self.get_logger().warning)
+        self.store = store or ProgressStore(self.settings.skydeck_state_dir, warn=self.get_logger().warning)
         self.drone_position: Point | None = None
         self.tracker = WorldTracker()
         self._pose_wall_s = -math.inf

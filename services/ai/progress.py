@@ -5,7 +5,8 @@ on ``/simulator/world`` (a new one at start, at every reset, and when a restarte
 builds its world again): a rerun of the same seed is a new world and gets a new tour, while an
 AI restarted in the middle of a mission finds its world's progress and carries on.
 
-The file (``ai_progress.json`` in :func:`default_state_dir`) keeps the last ``KEEP_WORLDS``
+The file (``ai_progress.json`` in the process's state directory,
+``ProcessSettings.skydeck_state_dir``) keeps the last ``KEEP_WORLDS``
 worlds, most recent last. Each write goes to a temporary file that replaces the old one
 atomically (fsync, then rename), so a crash at any moment leaves either the old progress or the
 new, never a torn file. A file that cannot be read or is not ours is ignored with a warning (the
@@ -24,20 +25,12 @@ from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
-__all__ = ["FILE_NAME", "KEEP_WORLDS", "ProgressStore", "WorldProgress", "default_state_dir"]
+__all__ = ["FILE_NAME", "KEEP_WORLDS", "ProgressStore", "WorldProgress"]
 
 logger = logging.getLogger("skydeck.ai")
 
 FILE_NAME = "ai_progress.json"
 KEEP_WORLDS = 5
-
-
-def default_state_dir() -> Path:
-    """``SKYDECK_STATE_DIR``, else ``$XDG_STATE_HOME/skydeck``, else ``~/.local/state/skydeck``."""
-    if configured := os.environ.get("SKYDECK_STATE_DIR"):
-        return Path(configured)
-    base = os.environ.get("XDG_STATE_HOME") or str(Path.home() / ".local" / "state")
-    return Path(base) / "skydeck"
 
 
 class WorldProgress(BaseModel):

@@ -96,6 +96,7 @@ class Suite:
             self._viewers(),
             self._rosbridge(),
             self._bag(),
+            *self._ros2(),
         ]
         if self.plots:
             families += [self._throughput_by_size(), self._rtf_by_boxes()]
@@ -181,6 +182,17 @@ class Suite:
 
         return Family("topic_latency", trials, self.settings.topic_repetitions, summarise,
                       rows=("topic_latency_p50", "topic_latency_p99", "zenoh_latency_p50", "zenoh_latency_p99"))  # fmt: skip
+
+    # -- the ROS 2 bridge (services/bench/ros2.py; only with the ros2 extra) -------------------
+
+    def _ros2(self) -> list[Family]:
+        from services.protocols.ros2.extra import missing_extra
+
+        if missing_extra() is not None:
+            return []
+        from services.bench.ros2 import ros2_family
+
+        return [ros2_family(self.settings.topic_repetitions, self.settings.throughput_s * 2)]
 
     # -- the rosbridge endpoint ---------------------------------------------------------------
 

@@ -14,7 +14,8 @@ launch file, its launch arguments as ``name:=`` (no space after them: the value 
 from __future__ import annotations
 
 import argparse
-import os
+
+from services.cli.settings import cli_settings
 
 __all__ = ["FILES", "add_parser", "candidates"]
 
@@ -84,9 +85,10 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
 
 def _completion(args: argparse.Namespace) -> int:
     if args.shell == "complete":
-        words = os.environ.get("SKYDECK_COMP_WORDS", "").split("\n")
+        settings = cli_settings()
+        words = settings.comp_words.split("\n")
         try:
-            index = int(os.environ.get("SKYDECK_COMP_CWORD", ""))
+            index = int(settings.comp_cword)
         except ValueError:
             index = len(words) - 1
         words += [""] * (index + 1 - len(words))  # the shell's $(...) drops a last, empty word

@@ -2,11 +2,10 @@
 
 from __future__ import annotations
 
-import os
 from typing import TYPE_CHECKING, Any
 
 from services.cli.errors import CliError
-from services.runtime.settings import DEFAULT_CORE_URL
+from services.cli.settings import cli_settings
 
 if TYPE_CHECKING:
     import httpx
@@ -16,12 +15,12 @@ __all__ = ["auth_headers", "core_url", "error_detail", "get_json", "post_json", 
 
 def core_url() -> str:
     """The core's URL: ``SKYDECK_CORE_URL`` or the default ``http://127.0.0.1:8000``."""
-    return os.environ.get("SKYDECK_CORE_URL", DEFAULT_CORE_URL).rstrip("/")
+    return cli_settings().core_url.rstrip("/")
 
 
 def auth_headers() -> dict[str, str]:
     """The Authorization header when ``SKYDECK_TOKEN`` is set."""
-    token = os.environ.get("SKYDECK_TOKEN", "")
+    token = cli_settings().token
     return {"Authorization": f"Bearer {token}"} if token else {}
 
 

@@ -1,7 +1,12 @@
 """``skydeck doctor`` (roswtf / ros2 doctor): checks the set-up and says what to do for each problem.
 
 Each check prints one line, ``[ok]``, ``[warn]`` or ``[FAIL]``, and for a problem the fix after
-``->``. The exit status is 1 if any check failed, so scripts and CI can use it.
+``->``. Two groups: what running Skydeck needs (Python, the install, the core at
+``SKYDECK_CORE_URL``, clocks, ports), then what only the test suite needs (Chromium and
+Playwright, docker-compose, Node for the protocol clients), whose absence is a warning. A port
+held by the Skydeck the doctor found (its core, its endpoints, its nodes) is as it should be.
+The exit status is 1 only if a check of the first group failed, so scripts and CI can use it:
+0 means the system can run.
 """
 
 from __future__ import annotations
@@ -12,17 +17,19 @@ import importlib.util
 import shutil
 import sys
 import time
+import urllib.parse
 from collections.abc import Callable
 from dataclasses import dataclass
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
+from typing import Any
 
 from services.cli.core_client import auth_headers, core_url
+from services.cli.settings import cli_settings
 
 __all__ = ["add_parser"]
 
 _REPO = Path(__file__).resolve().parents[2]
-_DEFAULT_PORTS = {8000: "core", 8001: "sim", 8002: "perception", 8003: "control", 8004: "ai", 9090: "rosbridge", 8765: "Foxglove"}
 _CHROMIUM = Path("/usr/bin/chromium")
 _MAX_SKEW_S = 2.0
 _NEEDED_PYTHON = (3, 11)  # a tuple here, not in the test: an older Python must be told, not fail to parse
@@ -40,19 +47,36 @@ class Check:
         return f"[{self.status}] {self.what}" + (f" -> {self.fix}" if self.fix else "")
 
 
+@dataclass(frozen=True)
+class _Found:
+    """The Skydeck the doctor found running at the core URL: the ports it holds, by port."""
+
+    ports: dict[int, str]
+
+
 def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    p = subparsers.add_parser("doctor", help="check Python, the venv, the core, clocks, ports and test browser; say what to fix")
+    p = subparsers.add_parser(
+        "doctor", help="check what running Skydeck needs (Python, the core, clocks, ports), then what its tests need"
+    )
     p.set_defaults(func=_doctor)
 
 
 def _doctor(args: argparse.Namespace) -> int:
-    checks: list[Callable[[], list[Check]]] = [_python, _venv, _packages, _core_and_clock, _ports, _browser]
-    failed = 0
-    for check in checks:
-        for finding in check():
-            print(finding.line(), flush=True)
-            failed += finding.status == "FAIL"
-    print(f"{failed} problem(s) to fix" if failed else "all checks passed")
+    found = _Found({})
+    running: list[Callable[[], list[Check]]] = [_python, _venv, _packages, _web_ui, lambda: _core_and_clock(found), lambda: _ports(found), _ros2]
+    testing: list[Callable[[], list[Check]]] = [_browser, _test_tools]
+    failed = warned = 0
+    for title, checks in (("running Skydeck", running), ("running the tests (make test)", testing)):
+        print(f"{title}:", flush=True)
+        for check in checks:
+            for finding in check():
+                print(finding.line(), flush=True)
+                failed += finding.status == "FAIL"
+                warned += finding.status == "warn"
+    if failed:
+        print(f"{failed} problem(s) to fix before Skydeck can run")
+    else:
+        print("Skydeck can run" + (f" ({warned} warning(s) above)" if warned else "; all checks passed"))
     return 1 if failed else 0
 
 
@@ -99,63 +123,149 @@ def _packages() -> list[Check]:
     return [Check("ok", "packages match requirements-runtime.lock")]
 
 
-def _core_and_clock() -> list[Check]:
+def _web_ui() -> list[Check]:
+    swagger = _REPO / "web_ui" / "vendor" / "node_modules" / "swagger-ui-dist"
+    if (_REPO / "web_ui").is_dir() and not swagger.is_dir():
+        return [Check("warn", "Swagger UI missing: /docs has no page", "run `make install` (npm ci in web_ui/vendor)")]
+    return []
+
+
+def _core_and_clock(found: _Found) -> list[Check]:
     import httpx
 
     url = core_url()
     try:
         reply = httpx.get(url + "/health", headers=auth_headers(), timeout=3.0)
     except httpx.HTTPError as error:
-        return [
-            Check(
-                "FAIL",
-                f"core at {url} not reachable ({type(error).__name__})",
-                "start it with `skydeck core` or `make up`, or set SKYDECK_CORE_URL to where it runs",
-            )
-        ]
+        missing = f"core at {url} not reachable ({type(error).__name__})"
+        fix = "start it with `skydeck core` or `make up`, or set SKYDECK_CORE_URL to where it runs"
+        if "core_url" not in cli_settings().model_fields_set:  # nothing says one should run yet
+            return [Check("warn", f"no core running: {missing}", fix)]
+        return [Check("FAIL", missing, fix)]
     if reply.status_code != 200:
         return [Check("FAIL", f"core at {url} answered {reply.status_code} to /health", "is another server on that port?")]
-    nodes = reply.json().get("nodes", "?") if reply.headers.get("content-type", "").startswith("application/json") else "?"
-    found = [Check("ok", f"core at {url} answers ({nodes} node(s) registered)")]
+    health = reply.json() if reply.headers.get("content-type", "").startswith("application/json") else {}
+    found.ports.update(_held_by(url, health))
+    found_nodes = [Check("ok", f"core at {url} answers ({health.get('nodes', '?')} node(s) registered)")]
     served = reply.headers.get("date")
     if served:
         skew = abs(email.utils.parsedate_to_datetime(served).timestamp() - time.time())
         if skew > _MAX_SKEW_S:
-            found.append(
+            found_nodes.append(
                 Check("warn", f"clock skew with the core: {skew:.1f} s", "sync both machines' clocks (NTP): stamps and delays compare them")
             )
         else:
-            found.append(Check("ok", f"clock skew with the core under {_MAX_SKEW_S:g} s"))
-    return found
+            found_nodes.append(Check("ok", f"clock skew with the core under {_MAX_SKEW_S:g} s"))
+    return found_nodes
 
 
-def _ports() -> list[Check]:
+def _held_by(url: str, health: dict[str, Any]) -> dict[int, str]:
+    """The ports of this machine the Skydeck at ``url`` holds: its core's, its endpoints', and
+    those of its nodes (from its graph)."""
+    import httpx
+
+    parts = urllib.parse.urlsplit(url)
+    if parts.hostname not in ("127.0.0.1", "localhost", "::1"):
+        return {}
+    held = {parts.port or 80: "core"}
+    endpoints = health.get("endpoints")
+    if isinstance(endpoints, dict):
+        held.update({port: name for name, port in endpoints.items() if isinstance(port, int)})
+    try:
+        graph = httpx.get(url + "/api/graph", headers=auth_headers(), timeout=3.0).json()
+    except (httpx.HTTPError, ValueError):
+        return held
+    for node in graph.get("nodes", []) if isinstance(graph, dict) else []:
+        node_url = urllib.parse.urlsplit(str(node.get("url", "")))
+        if node_url.hostname in ("127.0.0.1", "localhost", "::1") and node_url.port:
+            held.setdefault(node_url.port, str(node.get("name", "a node")).lstrip("/"))
+    return held
+
+
+def _default_ports() -> dict[int, str]:
+    """The ports `skydeck launch` takes: the workshop's processes and the core's endpoints
+    (from the launch plan and the table of endpoints), on the base port of the core URL when it
+    is this machine's (the default 8000 otherwise)."""
+    from services.launch.errors import LaunchError
+    from services.launch.plan import DEFAULT_BASE_PORT, LaunchOptions, plan_launch
+    from services.launch.spec import default_launch_file, load_launch_file
+
+    parts = urllib.parse.urlsplit(core_url())
+    local = parts.hostname in ("127.0.0.1", "localhost", "::1")
+    options = LaunchOptions(seed=0, base_port=parts.port if local and parts.port else DEFAULT_BASE_PORT)
+    try:
+        ports = {plan.port: plan.name for plan in plan_launch(load_launch_file(default_launch_file()), options)}
+    except LaunchError:  # a core so high a launch on its port could not start: the core's alone
+        return {options.base_port: "core"}
+    ports.update({port: endpoint.name for endpoint, port in options.core_endpoints().items() if port})
+    return ports
+
+
+def _ports(found: _Found) -> list[Check]:
     from services.runtime.ports import port_is_free
 
-    taken = [f"{port} ({role})" for port, role in _DEFAULT_PORTS.items() if not port_is_free(port)]
-    if not taken:
-        return [Check("ok", "default ports free: " + ", ".join(str(port) for port in _DEFAULT_PORTS))]
-    return [
-        Check(
-            "warn",
-            f"ports in use: {', '.join(taken)}",
-            "fine if Skydeck is running there; otherwise stop what holds them or use `skydeck launch --base-port N`",
+    defaults = _default_ports()
+    taken = {port: role for port, role in defaults.items() if not port_is_free(port)}
+    ours = {port: role for port, role in taken.items() if port in found.ports}
+    others = {port: role for port, role in taken.items() if port not in found.ports}
+    findings = []
+    if ours:
+        held = ", ".join(f"{port} ({found.ports[port]})" for port in ours)
+        findings.append(Check("ok", f"ports held by the Skydeck found at {core_url()}: {held}"))
+    if others:
+        findings.append(
+            Check(
+                "warn",
+                f"ports in use by something else: {', '.join(f'{port} ({role})' for port, role in others.items())}",
+                "stop what holds them, or run Skydeck beside it with `skydeck launch --base-port N` "
+                "(its protocol endpoints move with it)",
+            )
         )
-    ]
+    free = [port for port in defaults if port not in taken]
+    if free and not others:
+        findings.append(Check("ok", "default ports free: " + ", ".join(str(port) for port in free)))
+    return findings
 
 
 def _browser() -> list[Check]:
     found: list[Check] = []
     chromium = _CHROMIUM if _CHROMIUM.exists() else (Path(p) if (p := shutil.which("chromium")) else None)
     if chromium is None:
-        found.append(Check("FAIL", "no Chromium for the browser tests", "apt-get install chromium (Debian's; `make test` does it as root)"))
+        found.append(Check("warn", "no Chromium for the browser tests", "apt-get install chromium (Debian's; `make test` does it as root)"))
     else:
         found.append(Check("ok", f"Chromium at {chromium}"))
     if importlib.util.find_spec("playwright") is None:
-        found.append(Check("FAIL", "Playwright is not installed", "run `make install` (it is in requirements.lock)"))
+        found.append(Check("warn", "Playwright is not installed (browser tests)", "run `make install` (it is in requirements.lock)"))
     else:
         found.append(Check("ok", "Playwright installed"))
-    swagger = _REPO / "web_ui" / "vendor" / "node_modules" / "swagger-ui-dist"
-    if (_REPO / "web_ui").is_dir() and not swagger.is_dir():
-        found.append(Check("warn", "Swagger UI missing: /docs has no page", "run `make install` (npm ci in web_ui/vendor)"))
     return found
+
+
+def _test_tools() -> list[Check]:
+    found: list[Check] = []
+    if shutil.which("docker-compose") is None:
+        found.append(Check("warn", "no docker-compose for the container tests", "`make test-deps` installs Debian's package"))
+    else:
+        found.append(Check("ok", "docker-compose installed"))
+    clients = _REPO / "tests" / "clients"
+    if clients.is_dir():
+        if shutil.which("node") is None:
+            found.append(Check("warn", "no Node.js for the roslibjs and Foxglove client tests", "apt-get install nodejs npm"))
+        elif not (clients / "node_modules").is_dir():
+            found.append(Check("warn", "the protocol clients' packages are missing", "run `make install` (npm ci in tests/clients)"))
+        else:
+            found.append(Check("ok", "Node.js and the protocol clients' packages installed"))
+    return found
+
+
+def _ros2() -> list[Check]:
+    """The ROS 2 bridge's extra, and the domain a running bridge joined (its module says)."""
+    import httpx
+
+    from services.protocols.ros2.extra import doctor_findings
+
+    try:
+        graph = httpx.get(core_url() + "/api/graph", headers=auth_headers(), timeout=3.0).json()
+    except (httpx.HTTPError, ValueError):
+        graph = None
+    return [Check(*finding) for finding in doctor_findings(graph)]

@@ -29,19 +29,32 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.add_argument(
         "--show-args", action="store_true", help="list the arguments the launch file takes, with defaults, and exit"
     )
-    p.add_argument("--base-port", type=int, default=8000, help="core on N, sim N+1, perception N+2, ... (default 8000)")
+    p.add_argument(
+        "--base-port",
+        type=int,
+        help="core on N, sim N+1, perception N+2, ... (default: the port of a local SKYDECK_CORE_URL, else 8000)",
+    )
     p.add_argument("--speed", default="1", help="simulator speed: times real time, or 'max' (default 1)")
     p.add_argument("--seed", type=int, help="world seed (default: a random one, printed)")
     p.add_argument("--boxes", type=int, help="drone world: number of boxes (default 8)")
     p.add_argument("--robots", type=int, help="robot world: number of robots, each in its namespace (default 1)")
     p.add_argument("--exclude", default="", help="nodes to leave out, comma-separated (e.g. perception,ai)")
-    add_endpoint_flags(p)
+    p.add_argument("--ros2", action="store_true", help="start the ROS 2 bridge too (`skydeck bridge ros2`; domain ROS_DOMAIN_ID, else 0)")
+    add_endpoint_flags(p, moved_by=", moved as far as the base port")
     p.set_defaults(func=_launch, extra_positionals="launch_args")  # NAME:=VALUE after options too
 
 
 def _launch(args: argparse.Namespace) -> int:
     # Imported here: the supervisor is only needed by this verb.
-    from services.launch import LaunchOptions, launch_arguments, run_launch, show_arguments
+    from services.launch import (
+        DEFAULT_BASE_PORT,
+        LaunchOptions,
+        launch_arguments,
+        run_launch,
+        show_arguments,
+    )
+    from services.launch.settings import LaunchSettings
+    from services.protocols.endpoints import ENDPOINTS
 
     if args.file is not None and ":=" in args.file:  # `skydeck launch name:=value`: the default file's
         args.launch_args.insert(0, args.file)
@@ -51,22 +64,26 @@ def _launch(args: argparse.Namespace) -> int:
         return 0
 
     options = LaunchOptions(
-        base_port=args.base_port,
+        base_port=DEFAULT_BASE_PORT if args.base_port is None else args.base_port,
         speed=args.speed,
         seed=args.seed,
         boxes=args.boxes,
         exclude=tuple(name.strip() for name in args.exclude.split(",") if name.strip()),
         robots=args.robots,
-        **{
-            key: value
-            for key, value in (("rosbridge_port", args.rosbridge_port), ("foxglove_port", args.foxglove_port))
-            if value is not None
-        },
+        ros2=args.ros2,
+        endpoint_ports={e.name: getattr(args, e.setting) for e in ENDPOINTS if getattr(args, e.setting) is not None},
     )
+    if args.ros2:  # said at once, before anything starts
+        from services.protocols.ros2.extra import missing_extra
+
+        if (reason := missing_extra()) is not None:
+            raise CliError(reason)
     launch_args = {}
     for text in args.launch_args:
         name, separator, value = text.partition(":=")
         if not separator or not name:
             raise CliError(f"{text!r}: launch arguments are NAME:=VALUE (e.g. use_sim_time:=false)")
         launch_args[name] = value
-    return run_launch(args.file, options, launch_args=launch_args)  # a LaunchError is one line, by main
+    settings = LaunchSettings()  # the launcher's environment, read once
+    # a LaunchError is one line, by main
+    return run_launch(args.file, options, launch_args=launch_args, settings=settings, base_port_given=args.base_port is not None)

@@ -57,14 +57,18 @@ def _add_server_flags(parser: argparse.ArgumentParser, *, default_port: int | No
     parser.add_argument("--log-level", choices=["debug", "info", "warning", "error"], help="default info")
 
 
-def add_endpoint_flags(parser: argparse.ArgumentParser) -> None:
-    """``--rosbridge-port`` and ``--foxglove-port`` (``skydeck core`` and ``skydeck launch``)."""
-    parser.add_argument(
-        "--rosbridge-port", type=_port, help="rosbridge v2 endpoint for roslibjs/roslibpy (default 9090; 0: off)"
-    )
-    parser.add_argument(
-        "--foxglove-port", type=_port, help="Foxglove WebSocket endpoint for Foxglove/Lichtblick (default 8765; 0: off)"
-    )
+def add_endpoint_flags(parser: argparse.ArgumentParser, *, moved_by: str = "") -> None:
+    """A ``--NAME-port`` flag per endpoint of the table (``skydeck core`` and ``skydeck launch``;
+    ``moved_by`` says how a launch moves the default)."""
+    from services.protocols.endpoints import ENDPOINTS
+
+    for endpoint in ENDPOINTS:
+        parser.add_argument(
+            endpoint.flag,
+            type=_port,
+            dest=endpoint.setting,
+            help=f"{endpoint.summary} (default {endpoint.default_port}{moved_by}; 0: off)",
+        )
 
 
 def _port(text: str) -> int:
@@ -73,32 +77,20 @@ def _port(text: str) -> int:
     return int(text)
 
 
-def _apply_flags(args: argparse.Namespace) -> None:
-    """Flags become this process's settings, over its SKYDECK_* variables (no environment
-    round trip: a node or the core reads them through ``process_settings``)."""
-    from services.runtime.settings import set_process_overrides
-
-    set_process_overrides(
-        host=args.host,
-        port=args.port,
-        advertise_url=args.advertise_url,
-        core_url=getattr(args, "core_url", None),
-        log_level=args.log_level,
-        use_sim_time=True if getattr(args, "use_sim_time", False) else None,
-        rosbridge_port=getattr(args, "rosbridge_port", None),
-        foxglove_port=getattr(args, "foxglove_port", None),
-    )
+def _server_flags(args: argparse.Namespace) -> dict[str, object]:
+    """The flags every server process takes, as settings (None: not given)."""
+    return {"host": args.host, "port": args.port, "advertise_url": args.advertise_url, "log_level": args.log_level}
 
 
 def _core(args: argparse.Namespace) -> int:
     if args.extra:
         raise CliError(f"unknown option for `skydeck core`: {' '.join(args.extra)}")
-    _apply_flags(args)
-    from services.core.server import serve
-    from services.core.settings import CoreSettings
-    from services.runtime.settings import process_settings
+    from services.protocols.core_process import serve
+    from services.protocols.endpoints import ENDPOINTS
+    from services.protocols.settings import CoreProcessSettings
 
-    serve(process_settings(CoreSettings))
+    ports = {endpoint.setting: getattr(args, endpoint.setting) for endpoint in ENDPOINTS}
+    serve(CoreProcessSettings.from_flags(**_server_flags(args), **ports))  # flags over SKYDECK_*
     return 0
 
 
@@ -109,8 +101,14 @@ def _run(args: argparse.Namespace) -> int:
         set_process_ros_arguments,
         split_ros_args,
     )
+    from services.runtime.settings import NodeSettings, use_node_settings
 
-    _apply_flags(args)
+    # This process's settings, flags over SKYDECK_*, built once for every node it makes.
+    use_node_settings(
+        NodeSettings.from_flags(
+            **_server_flags(args), core_url=args.core_url, use_sim_time=True if args.use_sim_time else None
+        )
+    )
     node_argv, ros_argv = split_ros_args(list(args.extra))
     arguments = parse_ros_args(ros_argv)
     if args.node not in BUILTIN_NODES:  # a ROS 1 program's `chatter:=/news _rate:=5` too

@@ -18,7 +18,7 @@ import math
 import time
 
 from services.runtime import Node, NodeSettings, spin
-from services.runtime.settings import process_settings
+from services.runtime.settings import node_settings
 from shared_models.geometry_msgs import Point, PoseStamped
 from shared_models.mavros_msgs import PositionTarget
 from shared_models.ros_workshop import (
@@ -54,7 +54,7 @@ class ControlNode(Node):
     """The drone's flight modes: landed -> taking_off -> flying -> landing -> landed."""
 
     def __init__(self, settings: NodeSettings | None = None) -> None:
-        super().__init__("control", settings=settings or process_settings(NodeSettings, port=DEFAULT_PORT))
+        super().__init__("control", settings=settings or node_settings().with_default_port(DEFAULT_PORT))
         self.drone_position: Point | None = None
         self._pose_wall_s = -math.inf
         self._stale_reported = False

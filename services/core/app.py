@@ -11,8 +11,7 @@ from __future__ import annotations
 
 import contextlib
 import os
-import socket
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Awaitable, Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -23,19 +22,16 @@ from fastapi.staticfiles import StaticFiles
 from starlette.routing import Route, WebSocketRoute
 from starlette.types import Receive, Scope, Send
 
+from services.core.access import CoreAccess
 from services.core.api import router as api_router
 from services.core.core_node import CORE_NODE, CORE_NODE_PATH, CoreNode
+from services.core.endpoint_servers import EndpointServers, ServedEndpoint
 from services.core.gateway import Gateway, ServiceCallsFirst
 from services.core.guests import Guests
 from services.core.openapi import aggregate_openapi
 from services.core.parameter_server import ParameterTree
 from services.core.parameter_server import router as parameter_server_router
-from services.core.protocols.access import CoreAccess
-from services.core.protocols.foxglove import FoxgloveEndpoint
-from services.core.protocols.rosapi import host_rosapi
-from services.core.protocols.rosbridge import RosbridgeEndpoint
-from services.core.protocols.servers import EndpointServers, bind_endpoints
-from services.core.recordings import Recordings, default_recordings_dir
+from services.core.recordings import Recordings
 from services.core.recordings import router as recordings_router
 from services.core.registry import Registry
 from services.core.service_calls import ServiceCalls
@@ -83,19 +79,18 @@ class CoreApp(FastAPI):
         await super().__call__(scope, receive, send)
 
 
-def create_app(
-    settings: CoreSettings | None = None, *, endpoint_sockets: dict[str, socket.socket] | None = None
-) -> FastAPI:
+def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[ServedEndpoint] = ()) -> FastAPI:
     """The core as an ASGI app; ``settings.advertise_url`` (or host/port) is where nodes reach it.
 
-    The protocol endpoints (rosbridge, Foxglove) listen on their own ports while the app runs:
-    on ``endpoint_sockets`` if given (``skydeck core`` binds them first, to report a port in use
-    as one line), else on sockets bound at start-up from ``settings``.
+    ``endpoints`` are the protocol endpoints plugged in from above (rosbridge, Foxglove: see
+    :mod:`services.core.endpoint_servers`), each with the socket of its own port if it has one;
+    ``skydeck core`` gives those of the table (:mod:`services.protocols.core_process`).
     """
     settings = settings or CoreSettings()
     registry = Registry()
     core_url = settings.advertise_url or f"http://{reachable_host(settings.host)}:{settings.port}"
     core_node = CoreNode(registry, settings, core_url)
+    servers = EndpointServers(settings, endpoints)
 
     @contextlib.asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
@@ -104,22 +99,15 @@ def create_app(
         guests = Guests(registry, core_node.participant.url)
         calls = ServiceCalls(registry, guests, settings, http)
         gateway = Gateway(registry, core_node, settings, http, calls)
-        access = CoreAccess(core_node, registry, guests, calls, gateway, settings)
-        host_rosapi(access)
         app.state.http = http
         app.state.gateway = gateway
         app.state.calls = calls
-        app.state.rosbridge = RosbridgeEndpoint(access)
-        app.state.foxglove = FoxgloveEndpoint(access)
-        endpoints = EndpointServers(settings, endpoint_sockets if endpoint_sockets is not None else bind_endpoints(settings))
-        app.state.endpoints = endpoints
-        app.state.recordings = Recordings(settings.recordings_dir or default_recordings_dir(), core_node, registry)
-        await endpoints.start({"rosbridge": app.state.rosbridge.serve, "foxglove": app.state.foxglove.serve})
+        app.state.recordings = Recordings(settings.recordings_folder, core_node, registry)
+        await servers.start(CoreAccess(core_node, registry, guests, calls, gateway, settings))
         try:
             yield
         finally:
-            await endpoints.stop()
-            app.state.foxglove.close()
+            await servers.stop()
             app.state.recordings.close()
             core_node.stop()
             await http.aclose()
@@ -140,6 +128,7 @@ def create_app(
     app.state.registry = registry
     app.state.settings = settings
     app.state.core_node = core_node
+    app.state.endpoints = servers
     app.state.rosparam = ParameterTree()  # ROS 1's parameter server: the core's, as roscore's
     app.service_calls_first = ServiceCallsFirst(registry, lambda: getattr(app.state, "gateway", None))
     install_error_handlers(app)
@@ -149,8 +138,14 @@ def create_app(
 
     @app.get("/health", tags=["core"])
     async def health() -> dict[str, Any]:
-        """Liveness of the core."""
-        return {"status": "ok", "node": CORE_NODE, "pid": os.getpid(), "nodes": len(registry.nodes)}
+        """Liveness of the core, and the ports of its protocol endpoints (by name)."""
+        return {
+            "status": "ok",
+            "node": CORE_NODE,
+            "pid": os.getpid(),
+            "nodes": len(registry.nodes),
+            "endpoints": servers.ports,
+        }
 
     @app.websocket("/api/session")
     async def session(websocket: WebSocket) -> None:
@@ -182,11 +177,6 @@ def create_app(
         name = request.scope["path"].removeprefix(CORE_NODE_PATH)
         reply = await request.app.state.calls.call_hosted(name, await request.body())
         return Response(reply.body, status_code=reply.status, media_type=reply.content_type)
-
-    @app.websocket("/rosbridge")
-    async def rosbridge(websocket: WebSocket) -> None:
-        """The rosbridge v2 endpoint on the core's own port (also on --rosbridge-port)."""
-        await websocket.app.state.rosbridge.serve(websocket)
 
     @app.websocket(CORE_NODE_PATH + "/{topic:path}")
     async def core_publication(websocket: WebSocket) -> None:
@@ -231,7 +221,18 @@ def create_app(
     async def gateway_stream(websocket: WebSocket) -> None:
         await websocket.app.state.gateway.handle_stream(websocket)
 
+    for served in endpoints:  # an endpoint also on the core's own port (rosbridge's /rosbridge)
+        if served.plugin.core_path is not None:
+            app.router.routes.append(WebSocketRoute(served.plugin.core_path, _endpoint_route(servers, served.plugin.name)))
+
     # Last: every remaining path is a name.
     app.router.routes.append(Route("/{name:path}", gateway_http, methods=["GET", "POST"], include_in_schema=False))
     app.router.routes.append(WebSocketRoute("/{name:path}", gateway_stream))
     return app
+
+
+def _endpoint_route(servers: EndpointServers, name: str) -> Callable[[WebSocket], Awaitable[None]]:
+    async def serve(websocket: WebSocket) -> None:
+        await servers.connections(name).serve(websocket)
+
+    return serve

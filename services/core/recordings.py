@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-import os
 import re
 import time
 from collections.abc import Callable
@@ -37,18 +36,12 @@ from services.runtime.auth import token_required
 from services.runtime.subscription import RawSubscription
 from shared_models import Message, resolve_name
 
-__all__ = ["Recordings", "default_recordings_dir", "router"]
+__all__ = ["Recordings", "router"]
 
 _DISCOVERY_PERIOD_S = 0.2
 _FLUSH_PERIOD_S = 1.0
 _QUEUE_SIZE = 10_000
 _FILE_NAME = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.-]*\.mcap$")
-
-
-def default_recordings_dir() -> Path:
-    """``$XDG_DATA_HOME/skydeck/recordings``, else ``~/.local/share/skydeck/recordings``."""
-    base = os.environ.get("XDG_DATA_HOME") or str(Path.home() / ".local" / "share")
-    return Path(base) / "skydeck" / "recordings"
 
 
 class StartRecording(BaseModel):

@@ -1,4 +1,8 @@
-"""Running the core under uvicorn (``skydeck core``); Ctrl-C and SIGTERM stop it with exit 0."""
+"""Running the core under uvicorn; Ctrl-C and SIGTERM stop it with exit 0.
+
+``skydeck core`` runs it through :mod:`services.protocols.core_process`, which plugs the
+protocol endpoints in; this module knows none of them.
+"""
 
 from __future__ import annotations
 
@@ -7,20 +11,20 @@ import contextlib
 import logging
 import signal
 import socket
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 
 import uvicorn
 from starlette.types import ASGIApp
 
 from services.core.app import create_app
+from services.core.endpoint_servers import ServedEndpoint
 from services.core.gateway_protocol import GatewayHttpProtocol
-from services.core.protocols.servers import bind_endpoints
 from services.core.settings import CoreSettings
 from services.runtime.errors import NodeError
 from services.runtime.executor import configure_logging, run
 from services.runtime.server import bind
 
-__all__ = ["core_config", "serve"]
+__all__ = ["core_config", "listen", "serve"]
 
 
 class _Server(uvicorn.Server):
@@ -43,26 +47,20 @@ class _Server(uvicorn.Server):
         self.should_exit = True
 
 
-def serve(settings: CoreSettings | None = None) -> None:
-    """Serve the core until Ctrl-C or SIGTERM.
-
-    The protocol endpoints' ports are bound first: one in use raises EndpointPortBusy, which the
-    CLI prints as one line.
-    """
-    settings = settings or CoreSettings()
+def serve(
+    settings: CoreSettings, *, core_socket: socket.socket | None = None, endpoints: Sequence[ServedEndpoint] = ()
+) -> None:
+    """Serve the core until Ctrl-C or SIGTERM, on ``core_socket`` if given (see :func:`listen`),
+    with the protocol ``endpoints`` plugged in."""
     configure_logging(settings.log_level)
-    core_socket = _listen(settings)
-    try:
-        endpoint_sockets = bind_endpoints(settings)
-    except BaseException:
-        core_socket.close()
-        raise
+    sock = core_socket if core_socket is not None else listen(settings)
     log = logging.getLogger("skydeck.core")
     log.info("core at http://%s:%d (dashboard /, every command /docs)", settings.host, settings.port)
-    for name, sock in endpoint_sockets.items():
-        log.info("%s endpoint at ws://%s:%d", name, settings.host, sock.getsockname()[1])
-    config = core_config(create_app(settings, endpoint_sockets=endpoint_sockets), settings)
-    run(_Server(config).serve(sockets=[core_socket]))
+    for served in endpoints:
+        if served.socket is not None:
+            log.info("%s endpoint at ws://%s:%d", served.plugin.name, settings.host, served.socket.getsockname()[1])
+    config = core_config(create_app(settings, endpoints=endpoints), settings)
+    run(_Server(config).serve(sockets=[sock]))
 
 
 def core_config(app: ASGIApp, settings: CoreSettings) -> uvicorn.Config:
@@ -80,7 +78,7 @@ def core_config(app: ASGIApp, settings: CoreSettings) -> uvicorn.Config:
     )
 
 
-def _listen(settings: CoreSettings) -> socket.socket:
+def listen(settings: CoreSettings) -> socket.socket:
     """The core's listening socket, bound before anything is announced: a port in use is one
     line naming it (uvicorn would log the core's address, then its own error, and exit 3)."""
     try:

@@ -1,5 +1,8 @@
-"""Settings of the core process: a process's (``ProcessSettings``), the gateway's own, and the
-ports of the protocol endpoints it serves beside its own (rosbridge, Foxglove)."""
+"""Settings of the core: a process's (``ProcessSettings``) and the gateway's own.
+
+The protocol endpoints' ports are not the core's: ``skydeck core`` runs with
+:class:`services.protocols.settings.CoreProcessSettings`, these and one port per endpoint.
+"""
 
 from __future__ import annotations
 
@@ -23,10 +26,10 @@ class CoreSettings(ProcessSettings):
     # last publishing socket closed, so `topic pub --once` reaches subscribers that link late.
     gateway_linger_s: float = Field(default=2.0, ge=0)
 
-    # Protocol endpoints, each on a port of its own (0 turns it off), at the defaults of the tools
-    # users already have: rosbridge_server's 9090 and foxglove_bridge's 8765. rosbridge is also
-    # at /rosbridge on the core's own port, whatever this says.
-    rosbridge_port: int = Field(default=9090, ge=0, le=65535, description="rosbridge v2 endpoint; 0: off")
-    foxglove_port: int = Field(default=8765, ge=0, le=65535, description="Foxglove WebSocket endpoint; 0: off")
     # Recordings made from the dashboard (`/api/recordings`); None: $XDG_DATA_HOME/skydeck/recordings.
     recordings_dir: Path | None = None
+
+    @property
+    def recordings_folder(self) -> Path:
+        """``recordings_dir``, else ``$XDG_DATA_HOME/skydeck/recordings`` (``~/.local/share/...``)."""
+        return self.recordings_dir or self.skydeck_data_dir / "recordings"

@@ -18,9 +18,9 @@ import sys
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
-from services.core.settings import CoreSettings
 from services.launch.errors import LaunchError
 from services.launch.spec import LaunchSpec, NodeSpec
+from services.protocols.endpoints import DEFAULT_BASE_PORT, ENDPOINTS, Endpoint
 from sim_server.robot.limits import MAX_ROBOTS  # constants only: no PyBullet
 
 __all__ = [
@@ -32,10 +32,6 @@ __all__ = [
     "plan_launch",
 ]
 
-DEFAULT_BASE_PORT = 8000
-# The core's protocol endpoints: the flag of `skydeck core`, and the field of both LaunchOptions
-# and CoreSettings (which holds the defaults and reads SKYDECK_<FIELD>).
-_ENDPOINTS = (("--rosbridge-port", "rosbridge_port"), ("--foxglove-port", "foxglove_port"))
 _MAX_SEED = 2**32 - 1
 # The simulator's default (sim_server.limits.DEFAULT_BOXES, pinned by a test): importing
 # sim_server would load PyBullet into the launcher, which never simulates anything.
@@ -57,17 +53,24 @@ class LaunchOptions:
     boxes: int | None = None
     exclude: tuple[str, ...] = ()
     robots: int | None = None
-    # The core's protocol endpoints (0: off; None: the core's setting, SKYDECK_ROSBRIDGE_PORT or
-    # 9090); not shifted by --base-port: they are the ports the tools' users already know.
-    rosbridge_port: int | None = None
-    foxglove_port: int | None = None
+    # The core's protocol endpoints' ports that were given (a flag, or SKYDECK_<NAME>_PORT:
+    # with_given_ports), by endpoint name; 0 turns one off. Every other endpoint listens on its
+    # default port moved as far as the base port moves the core (rosbridge 9090 at base 8000,
+    # 20430 at base 19340), so launches side by side do not compete for them.
+    endpoint_ports: Mapping[str, int] = field(default_factory=dict)
+    # `--ros2`: the ROS 2 bridge (`skydeck run ros2_bridge`) starts with the rest, on the port
+    # after the launch file's last, on ROS_DOMAIN_ID's domain (else 0).
+    ros2: bool = False
 
     def __post_init__(self) -> None:
         if not 1 <= self.base_port <= 65535:
             raise LaunchError(f"--base-port must be a port number 1-65535, got {self.base_port}")
-        for flag, port in (("--rosbridge-port", self.rosbridge_port), ("--foxglove-port", self.foxglove_port)):
-            if port is not None and not 0 <= port <= 65535:
-                raise LaunchError(f"{flag} must be a port number 0-65535 (0: off), got {port}")
+        names = {endpoint.name for endpoint in ENDPOINTS}
+        for name, port in self.endpoint_ports.items():
+            if name not in names:
+                raise LaunchError(f"no protocol endpoint {name!r}; the endpoints are {', '.join(sorted(names))}")
+            if not 0 <= port <= 65535:
+                raise LaunchError(f"--{name}-port must be a port number 0-65535 (0: off), got {port}")
         if self.speed != "max":
             try:
                 speed = float(self.speed)
@@ -88,18 +91,23 @@ class LaunchOptions:
             return self
         return dataclasses.replace(self, seed=random.SystemRandom().randrange(_MAX_SEED + 1))
 
-    def endpoint_ports(self, environ: Mapping[str, str]) -> dict[str, int]:
-        """The ports the core's protocol endpoints will listen on (those that are on), by the
-        flag that sets each: the option, else the core's ``SKYDECK_*`` setting in ``environ``."""
-        ports = {}
-        for flag, setting in _ENDPOINTS:
-            port = getattr(self, setting)
-            if port is None:
-                text = environ.get(CoreSettings.model_config["env_prefix"] + setting.upper(), "")
-                port = int(text) if text.isdigit() else CoreSettings.model_fields[setting].default
-            if port:
-                ports[flag] = port
-        return ports
+    def with_given_ports(self, given: Mapping[str, int]) -> LaunchOptions:
+        """These options, with endpoint ports ``given`` elsewhere (``SKYDECK_*_PORT``) where
+        these give none."""
+        return dataclasses.replace(self, endpoint_ports={**given, **self.endpoint_ports})
+
+    def core_endpoints(self) -> dict[Endpoint, int]:
+        """The port of every protocol endpoint of the core (0: off): as given, else moved with
+        the base port (:meth:`~services.protocols.endpoints.Endpoint.port_at`)."""
+        return {e: self.endpoint_ports.get(e.name, e.port_at(self.base_port)) for e in ENDPOINTS}
+
+    def endpoints_notice(self) -> str:
+        """One line naming the core's endpoint ports, and whether they moved with the base port
+        (``protocol endpoints rosbridge :20430, foxglove :20105 (moved with --base-port)``)."""
+        ports = self.core_endpoints()
+        moved = any(e.name not in self.endpoint_ports and port != e.default_port for e, port in ports.items())
+        named = ", ".join(f"{e.name} :{port}" for e, port in ports.items() if port)
+        return f"protocol endpoints {named}" + (" (moved with --base-port)" if moved else "") if named else ""
 
     def placeholders(self) -> dict[str, str]:
         """The values of ``{speed}``, ``{boxes}``, ``{robots}``, ``{base_port}`` and (once set)
@@ -138,7 +146,7 @@ def plan_launch(spec: LaunchSpec, options: LaunchOptions) -> tuple[NodePlan, ...
     """The processes to start, in start order: the core first, then the rest as listed.
 
     Raises ``LaunchError`` for an ``exclude`` name the launch file does not have, a port past
-    65535, ``{seed}`` in the file with no seed in the options (see ``with_seed``), or ``--boxes``
+    65535 (a node's, or a protocol endpoint's moved with the base port), ``{seed}`` in the file with no seed in the options (see ``with_seed``), or ``--boxes``
     or ``--robots`` given to a launch file that has no use for them.
     """
     for option, value in (("boxes", options.boxes), ("robots", options.robots)):
@@ -154,7 +162,7 @@ def plan_launch(spec: LaunchSpec, options: LaunchOptions) -> tuple[NodePlan, ...
             f"does not have; its nodes are: {', '.join(spec.names)}"
         )
     last = options.base_port + max(node.port_offset for node in spec.nodes)
-    if last > 65535:
+    if last + options.ros2 > 65535:
         raise LaunchError(
             f"--base-port {options.base_port} puts the last node on port {last}, past 65535: "
             "choose a lower base port"
@@ -163,16 +171,24 @@ def plan_launch(spec: LaunchSpec, options: LaunchOptions) -> tuple[NodePlan, ...
     nodes = [node for node in spec.nodes if node.name not in options.exclude]
     nodes.sort(key=lambda node: not node.is_core)  # stable: the core first, the rest as listed
     plans = [_plan(node, options.base_port, values) for node in nodes]
-    # The core's endpoint ports, when given, are its flags, as `skydeck core` takes them.
+    if options.ros2:
+        plans.append(NodePlan(name="ros2_bridge", run="ros2_bridge", port=last + 1))
+    if not any(plan.is_core for plan in plans):
+        return tuple(plans)
+    for endpoint, port in options.core_endpoints().items():
+        if port > 65535:
+            raise LaunchError(
+                f"--base-port {options.base_port} moves the {endpoint.name} endpoint to port {port}, past "
+                f"65535: choose a lower base port, or give {endpoint.flag} PORT (0: off)"
+            )
+    # The core's endpoint ports, given or moved, are its flags, as `skydeck core` takes them.
     endpoints = tuple(
         word
-        for flag, setting in _ENDPOINTS
-        if getattr(options, setting) is not None
-        for word in (flag, str(getattr(options, setting)))
+        for e, port in options.core_endpoints().items()
+        if e.name in options.endpoint_ports or port != e.default_port
+        for word in (e.flag, str(port))
     )
-    return tuple(
-        dataclasses.replace(plan, args=(*plan.args, *endpoints)) if plan.is_core and endpoints else plan for plan in plans
-    )
+    return tuple(dataclasses.replace(plan, args=(*plan.args, *endpoints)) if plan.is_core else plan for plan in plans)
 
 
 def core_url(spec: LaunchSpec, options: LaunchOptions) -> str:

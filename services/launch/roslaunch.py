@@ -104,13 +104,18 @@ class RosLaunch:
         return LaunchSpec(nodes=tuple(nodes))
 
 
-def load_roslaunch_file(path: str | Path, args: Mapping[str, str] | None = None) -> RosLaunch:
-    """Read a roslaunch file, with ``args`` as its command line's ``name:=value``.
+def load_roslaunch_file(
+    path: str | Path, args: Mapping[str, str] | None = None, *, environ: Mapping[str, str] | None = None
+) -> RosLaunch:
+    """Read a roslaunch file, with ``args`` as its command line's ``name:=value`` and
+    ``environ`` for its ``$(env NAME)`` (default: the launcher's, :class:`LaunchSettings`).
 
     Raises ``LaunchFileError`` with one line naming the file, the line and the problem.
     """
     from services.launch.roslaunch_reader import read_roslaunch
+    from services.launch.settings import LaunchSettings
 
     path = Path(path).resolve() if Path(path).exists() else Path(path)
-    nodes, parameters, warnings = read_roslaunch(path, dict(args or {}))
+    environment = environ if environ is not None else LaunchSettings().environment
+    nodes, parameters, warnings = read_roslaunch(path, dict(args or {}), environment)
     return RosLaunch(path, tuple(nodes), tuple(parameters), tuple(warnings))

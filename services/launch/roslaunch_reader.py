@@ -119,7 +119,8 @@ class _Scope:
 class _Reader:
     """Reads one launch file and those it includes into nodes, parameters and warnings."""
 
-    def __init__(self) -> None:
+    def __init__(self, environ: Mapping[str, str]) -> None:
+        self._environ = environ  # what $(env) and $(optenv) read: the launcher's environment
         self.nodes: list[RosNode] = []
         self.parameters: list[tuple[str, Any]] = []
         self.warnings: list[str] = []
@@ -188,11 +189,11 @@ class _Reader:
             except PackageNotFound as error:
                 raise self.fail(scope, element, f"$(find {arguments[0]}): {error}") from None
         if command == "env" and len(arguments) == 1:
-            if arguments[0] not in os.environ:
+            if arguments[0] not in self._environ:
                 raise self.fail(scope, element, f"$(env {arguments[0]}): the variable is not set (use $(optenv ...))")
-            return os.environ[arguments[0]]
+            return self._environ[arguments[0]]
         if command == "optenv" and arguments:
-            return os.environ.get(arguments[0], " ".join(arguments[1:]))
+            return self._environ.get(arguments[0], " ".join(arguments[1:]))
         if command == "dirname" and not arguments:
             return str(scope.file.parent)
         if command == "anon" and len(arguments) == 1:
@@ -510,9 +511,12 @@ def _leaves(data: dict[str, Any], prefix: str) -> list[tuple[str, Any]]:
     return pairs
 
 
-def read_roslaunch(path: Path, args: dict[str, str]) -> tuple[list[RosNode], list[tuple[str, Any]], list[str]]:
-    """The nodes, parameters and warnings of the launch file at ``path`` given ``args``."""
-    reader = _Reader()
+def read_roslaunch(
+    path: Path, args: dict[str, str], environ: Mapping[str, str]
+) -> tuple[list[RosNode], list[tuple[str, Any]], list[str]]:
+    """The nodes, parameters and warnings of the launch file at ``path`` given ``args`` (and
+    ``environ`` for its ``$(env)``)."""
+    reader = _Reader(environ)
     reader.read_file(_Scope(path, package_of(path), "/", {}, {}, args, set(), [], {}))
     return reader.nodes, reader.parameters, reader.warnings
 

@@ -3,32 +3,41 @@
     exit_code = run_launch("path/to/ros_workshop/launch/nodes.launch", LaunchOptions(base_port=8000))
 
 A YAML launch file (:mod:`services.launch.spec`) lists every process, the core included. A
-roslaunch XML file (:mod:`services.launch.roslaunch`) lists nodes and parameters only; the core
-is started for it only when none answers at the launch's core URL, as roslaunch starts roscore
-only when none runs, so it can run beside ``skydeck launch --exclude perception,control,ai``.
-Both go to the same :class:`~services.launch.supervisor.Supervisor`.
+roslaunch XML file (:mod:`services.launch.roslaunch`) lists nodes and parameters only. Either
+way the launch first looks for a running core, as roslaunch looks at ``ROS_MASTER_URI``: at
+``SKYDECK_CORE_URL`` if it is set (and ``--base-port`` is not given), else at the launch's own
+core URL (``--base-port``); a local ``SKYDECK_CORE_URL``'s port is then the base port. If a core
+answers there, the launch's nodes join it and no core is started (so a roslaunch file runs
+beside ``skydeck launch --exclude perception,control,ai``); if none does, the launch starts its
+core there, unless the URL is another machine's (as roslaunch starts no roscore for a remote
+master: one line says so). Both go to the same :class:`~services.launch.supervisor.Supervisor`.
 """
 
 from __future__ import annotations
 
 import asyncio
 import contextlib
+import dataclasses
 import json
 import sys
+import urllib.parse
 import urllib.request
 from collections.abc import Mapping
 from pathlib import Path
 from typing import TextIO
 
 from services.launch.arguments import LaunchArgument
-from services.launch.plan import LaunchOptions
+from services.launch.errors import LaunchError
+from services.launch.plan import LaunchOptions, core_url
 from services.launch.roslaunch import is_roslaunch_file, load_roslaunch_file
-from services.launch.spec import find_launch_file, load_launch_file
+from services.launch.settings import LaunchSettings
+from services.launch.spec import LaunchSpec, find_launch_file, load_launch_file
 from services.launch.supervisor import Supervisor
 
 __all__ = ["core_answers", "launch_arguments", "run_launch"]
 
 _CORE_PROBE_S = 1.0
+_THIS_MACHINE = ("127.0.0.1", "localhost", "::1", "0.0.0.0")
 
 
 def run_launch(
@@ -37,28 +46,72 @@ def run_launch(
     *,
     out: TextIO | None = None,
     launch_args: Mapping[str, str] | None = None,
+    settings: LaunchSettings | None = None,
+    base_port_given: bool = True,
 ) -> int:
     """``skydeck launch``: load the launch file (default: the workshop's; a bare name such as
     ``robot`` names a shipped one; a ``.launch``/``.xml`` file is roslaunch XML), with
     ``launch_args`` as its ``name:=value`` arguments, and run it until stopped.
 
-    A roslaunch file starts the core only when none answers at the launch's core URL, as
-    roslaunch starts roscore only when none runs; the launch's own control node comes with a
-    core it starts. Raises ``LaunchError`` (``LaunchFileError`` for the file) with one line.
+    A running core is used, and none started, when one answers where the launch looks (see the
+    module docstring: ``SKYDECK_CORE_URL`` in ``settings`` unless ``base_port_given``); the
+    launch's own control node comes with a core it starts. Raises ``LaunchError``
+    (``LaunchFileError`` for the file) with one line.
     """
     file = find_launch_file(path)
     options = options or LaunchOptions()
-    if is_roslaunch_file(file):
-        ros = load_roslaunch_file(file, launch_args)
+    settings = settings or LaunchSettings()
+    roslaunch = is_roslaunch_file(file)
+    if roslaunch:
+        ros = load_roslaunch_file(file, launch_args, environ=settings.environment)
         for warning in ros.warnings:
             _print(out, f"[launch] warning: {warning}")
-        start_core = not core_answers(f"http://127.0.0.1:{options.base_port}")
-        spec, parameters = ros.spec(start_core=start_core), ros.parameters
+        spec, parameters = ros.spec(start_core=True), ros.parameters
     else:
         spec, parameters = load_launch_file(file, launch_args or {}), ()
-        start_core = True
-    supervisor = Supervisor(spec, options, out=out, control=start_core, parameters=parameters)
+    looked_at = settings.core_url.rstrip("/") if settings.core_url_given and not base_port_given else None
+    if looked_at is not None and _this_machine(looked_at):  # its port is the base port
+        options = dataclasses.replace(options, base_port=_base_port_at(looked_at, spec))
+    url = looked_at or core_url(spec, options)
+    running = core_answers(url)
+    if running:
+        _print(out, f"[launch] a core answers at {url}: the launch joins it")
+        if roslaunch:
+            spec = ros.spec(start_core=False)
+        else:
+            options = _without_core(spec, options, url)
+    elif looked_at is not None and not _this_machine(looked_at):
+        raise LaunchError(
+            f"no core answers at SKYDECK_CORE_URL={looked_at}, which is not this machine: start the core "
+            "there, or unset SKYDECK_CORE_URL (or give --base-port) to start one here"
+        )
+    supervisor = Supervisor(
+        spec, options, out=out, control=not running, parameters=parameters, settings=settings,
+        core_url=url if running else None,
+    )  # fmt: skip
     return asyncio.run(supervisor.run())
+
+
+def _without_core(spec: LaunchSpec, options: LaunchOptions, url: str) -> LaunchOptions:
+    """``options`` leaving out the launch file's core (one already answers at ``url``)."""
+    cores = tuple(node.name for node in spec.nodes if node.is_core)
+    if len(cores) == len(spec.nodes):
+        raise LaunchError(f"a core already answers at {url}, and the launch file starts nothing else")
+    return dataclasses.replace(options, exclude=(*options.exclude, *cores))
+
+
+def _this_machine(url: str) -> bool:
+    parts = urllib.parse.urlsplit(url)
+    return parts.scheme == "http" and parts.hostname in _THIS_MACHINE
+
+
+def _base_port_at(url: str, spec: LaunchSpec) -> int:
+    """The base port that puts the launch's core at ``url`` (a local ``SKYDECK_CORE_URL``)."""
+    offset = next((node.port_offset for node in spec.nodes if node.is_core), 0)
+    port = urllib.parse.urlsplit(url).port or 80
+    if port - offset < 1:
+        raise LaunchError(f"SKYDECK_CORE_URL={url}: the launch's core cannot be on port {port} (its base port would be below 1)")
+    return port - offset
 
 
 def launch_arguments(path: str | Path | None = None) -> dict[str, LaunchArgument]:

@@ -18,7 +18,6 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import enum
-import os
 import signal
 import sys
 import time
@@ -29,7 +28,9 @@ from typing import TYPE_CHECKING, TextIO
 
 from services.launch.child_process import ChildProcess, Health, describe_exit, signal_group, spawn
 from services.launch.errors import LaunchError
-from services.launch.plan import LaunchOptions, NodePlan, core_url, default_command, plan_launch
+from services.launch.plan import LaunchOptions, NodePlan, default_command, plan_launch
+from services.launch.plan import core_url as launch_core_url
+from services.launch.settings import LaunchSettings
 from services.launch.spec import LaunchSpec
 from services.runtime.http_client import HttpClient, HttpError
 from services.runtime.ports import port_is_free
@@ -113,7 +114,9 @@ class Supervisor:
     every line (default: standard output); ``control`` starts the launch's own node once the
     core is up (``/skydeck_launch``, which ``skydeck node kill`` asks); ``parameters`` (absolute
     name -> value, in order) go to the core's ROS 1 parameter server before the first node
-    other than the core starts. Raises ``LaunchError`` at once for bad options.
+    other than the core starts; ``settings`` are the launcher's (its environment, endpoint
+    ports given there; read now if not given); ``core_url`` is a running core the launch uses
+    (default: its own core's URL). Raises ``LaunchError`` at once for bad options.
     """
 
     def __init__(
@@ -126,11 +129,14 @@ class Supervisor:
         stop_timeout_s: float = STOP_TIMEOUT_S,
         control: bool = False,
         parameters: Sequence[tuple[str, object]] = (),
+        settings: LaunchSettings | None = None,
+        core_url: str | None = None,
     ) -> None:
+        self._settings = settings or LaunchSettings()
         given = options or LaunchOptions()
-        self.options = given.with_seed()
+        self.options = given.with_seed().with_given_ports(self._settings.endpoint_ports())
         self.plans = plan_launch(spec, self.options)
-        self.core_url = core_url(spec, self.options)
+        self.core_url = core_url or launch_core_url(spec, self.options)
         self._show_seed = given.seed is None and any(
             "{seed}" in text for node in spec.nodes for text in (*node.args, *node.env.values())
         )
@@ -275,6 +281,9 @@ class Supervisor:
     def _announce(self) -> None:
         nodes = ", ".join(f"{plan.name} :{plan.port}" for plan in self.plans)
         self._say(f"starting {nodes}; core at {self.core_url}")
+        notice = self.options.endpoints_notice()
+        if notice and any(plan.is_core for plan in self.plans):
+            self._say(notice)
         if self._show_seed:
             seed = self.options.seed
             self._say(f"world seed {seed} (--seed {seed} gives the same world again)")
@@ -289,12 +298,12 @@ class Supervisor:
                 )
         if not any(plan.is_core for plan in self.plans):
             return
-        for flag, port in self.options.endpoint_ports(os.environ).items():
-            if not port_is_free(port):
-                endpoint = flag.removeprefix("--").removesuffix("-port")
+        for endpoint, port in self.options.core_endpoints().items():
+            if port and not port_is_free(port):
                 raise LaunchError(
-                    f"port {port} for the core's {endpoint} endpoint is already in use (another "
-                    f"Skydeck or {endpoint} server?): choose another with {flag} PORT, or {flag} 0 to turn it off"
+                    f"port {port} for the core's {endpoint.name} endpoint is already in use (another Skydeck "
+                    f"or {endpoint.name} server?): choose another with {endpoint.flag} PORT, or "
+                    f"{endpoint.flag} 0 to turn it off"
                 )
 
     async def _set_parameters(self) -> None:
@@ -337,7 +346,7 @@ class Supervisor:
     async def _spawn(self, child: _Child) -> None:
         plan = child.plan
         argv = [str(part) for part in self._command_for(plan)]
-        env = {**os.environ, "SKYDECK_CORE_URL": self.core_url, "PYTHONUNBUFFERED": "1", **plan.env}
+        env = {**self._settings.environment, "SKYDECK_CORE_URL": self.core_url, "PYTHONUNBUFFERED": "1", **plan.env}
         prefix = f"[{plan.name}] "
 
         def on_line(text: str, is_stderr: bool) -> None:

@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 
 from services.runtime import Node, NodeSettings, spin
-from services.runtime.settings import process_settings
+from services.runtime.settings import node_settings
 from shared_models.geometry_msgs import Point32, Polygon, PoseArray
 
 __all__ = ["PerceptionNode", "boxes_to_polygon", "main"]
@@ -23,7 +23,7 @@ class PerceptionNode(Node):
     """Republishes every box message as a Polygon, as soon as it arrives."""
 
     def __init__(self, settings: NodeSettings | None = None) -> None:
-        super().__init__("perception", settings=settings or process_settings(NodeSettings, port=DEFAULT_PORT))
+        super().__init__("perception", settings=settings or node_settings().with_default_port(DEFAULT_PORT))
         self.publisher = self.create_publisher(Polygon, "/perception/boxes", 1, latched=True)
         self.create_subscription(PoseArray, "/simulator/boxes", self.callback, 1)
 

@@ -1,18 +1,26 @@
-"""Settings of Skydeck's processes: one pydantic-settings source, read from ``SKYDECK_*``.
+"""Settings of Skydeck's processes: one pydantic-settings object per process, from ``SKYDECK_*``.
 
-    ProcessSettings      what every server process has: where it listens, its token, its limits
-    ├── NodeSettings     + how a node reaches the core, sim time, service-call timeout
-    └── CoreSettings     (services.core.settings) + the gateway's timeouts and the endpoints' ports
+    ProcessSettings      what every server process has: where it listens, its token, its limits,
+    │                    where it keeps files (the XDG base directories)
+    ├── NodeSettings     + how a node reaches the core, sim time, service-call timeout, ROS_NAMESPACE
+    └── CoreSettings     (services.core.settings) + the gateway's; CoreProcessSettings
+                         (services.protocols.settings) + each protocol endpoint's port
 
-Every field reads from the environment with the ``SKYDECK_`` prefix (``SKYDECK_PORT=8003``).
-The CLI does not go through the environment: its flags become keyword arguments
-(:func:`set_process_overrides`), which win over the environment, as pydantic-settings orders them.
+Every field reads from the environment with the ``SKYDECK_`` prefix (``SKYDECK_PORT=8003``);
+another tool's variables that Skydeck honours (``ROS_NAMESPACE``, ``XDG_STATE_HOME``,
+``XDG_DATA_HOME``) are read here too, as fields, and nowhere else. A process's entry point builds
+its settings once, its command line's flags over the environment (:meth:`ProcessSettings.from_flags`:
+keyword arguments win over the environment, as pydantic-settings orders them), and passes them
+down: ``skydeck core`` to the core's app factory, ``skydeck run`` to every node of the process
+(:func:`use_node_settings`; a node made without settings takes them, :func:`node_settings`, as
+a ROS node takes its process's context).
 """
 
 from __future__ import annotations
 
 import argparse
 import socket
+from pathlib import Path
 from typing import Any, TypeVar
 
 from pydantic import Field, ValidationError
@@ -25,10 +33,10 @@ __all__ = [
     "MAX_MESSAGE_BYTES",
     "NodeSettings",
     "ProcessSettings",
-    "process_settings",
+    "node_settings",
     "reachable_host",
-    "set_process_overrides",
     "settings_from_flags",
+    "use_node_settings",
 ]
 
 DEFAULT_CORE_URL = "http://127.0.0.1:8000"
@@ -36,14 +44,11 @@ DEFAULT_CORE_URL = "http://127.0.0.1:8000"
 S = TypeVar("S", bound="ProcessSettings")
 B = TypeVar("B", bound=BaseSettings)
 
-# Flags of this process's command line (`skydeck run --port 8003 ...`), by field name.
-_overrides: dict[str, Any] = {}
-
 
 class ProcessSettings(BaseSettings):
     """Where a server process listens, its access token and its limits."""
 
-    model_config = SettingsConfigDict(env_prefix="SKYDECK_", extra="ignore")
+    model_config = SettingsConfigDict(env_prefix="SKYDECK_", extra="ignore", populate_by_name=True)
 
     # Where it listens: loopback unless told otherwise (containers pass 0.0.0.0).
     host: str = "127.0.0.1"
@@ -72,6 +77,34 @@ class ProcessSettings(BaseSettings):
 
     log_level: str = "INFO"
 
+    # Where Skydeck keeps files on this machine: the XDG base directories (their own variables,
+    # unprefixed), under ~/.local when unset.
+    state_dir: str = Field(default="", description="empty: $XDG_STATE_HOME/skydeck")
+    xdg_state_home: str = Field(default="", validation_alias="XDG_STATE_HOME")
+    xdg_data_home: str = Field(default="", validation_alias="XDG_DATA_HOME")
+
+    @property
+    def skydeck_state_dir(self) -> Path:
+        """``SKYDECK_STATE_DIR``, else ``$XDG_STATE_HOME/skydeck``, else ``~/.local/state/skydeck``."""
+        if self.state_dir:
+            return Path(self.state_dir)
+        return Path(self.xdg_state_home or Path.home() / ".local" / "state") / "skydeck"
+
+    @property
+    def skydeck_data_dir(self) -> Path:
+        """``$XDG_DATA_HOME/skydeck``, else ``~/.local/share/skydeck``."""
+        return Path(self.xdg_data_home or Path.home() / ".local" / "share") / "skydeck"
+
+    @classmethod
+    def from_flags(cls: type[S], **flags: Any) -> S:
+        """These settings from a command line's flags (``None``: not given) over the environment."""
+        return cls(**{name: value for name, value in flags.items() if value is not None})
+
+    def with_default_port(self: S, port: int) -> S:
+        """These settings, listening on ``port`` unless a port was given (flag or environment):
+        a built-in node's own port (``skydeck run control``: 8003)."""
+        return self if "port" in self.model_fields_set else self.model_copy(update={"port": port})
+
 
 class NodeSettings(ProcessSettings):
     """A node's settings: a process's, and how it reaches the core."""
@@ -79,19 +112,24 @@ class NodeSettings(ProcessSettings):
     core_url: str = DEFAULT_CORE_URL
     use_sim_time: bool = False
     service_timeout_s: float = Field(default=10.0, gt=0)
+    # ROS 1's variable for the namespace a rospy program's node starts in (`ROS_NAMESPACE=/robot1`).
+    ros_namespace: str = Field(default="", validation_alias="ROS_NAMESPACE")
 
 
-def set_process_overrides(**values: Any) -> None:
-    """Settings given on this process's command line; ``None`` values are left out."""
-    _overrides.update({key: value for key, value in values.items() if value is not None})
+_this_process: NodeSettings | None = None
 
 
-def process_settings(cls: type[S], **defaults: Any) -> S:
-    """``cls`` from its defaults, then ``defaults`` (a built-in node's port), then the
-    environment, then the command line (:func:`set_process_overrides`)."""
-    from_env = cls()
-    explicit = {name: getattr(from_env, name) for name in from_env.model_fields_set}
-    return cls(**{**defaults, **explicit, **{k: v for k, v in _overrides.items() if k in cls.model_fields}})
+def use_node_settings(settings: NodeSettings | None) -> None:
+    """Make ``settings`` this process's node settings (None: none): what ``skydeck run`` built
+    from its flags over the environment, for every node the process makes without its own."""
+    global _this_process
+    _this_process = settings
+
+
+def node_settings() -> NodeSettings:
+    """This process's node settings (:func:`use_node_settings`); a program started without
+    ``skydeck run`` (``python3 node.py``, a test) has none set, and reads the environment now."""
+    return _this_process if _this_process is not None else NodeSettings()
 
 
 def reachable_host(host: str) -> str:

@@ -17,6 +17,7 @@ import pytest
 from websockets.asyncio.client import connect
 
 from services.launch.background import BackgroundProcess
+from services.protocols.endpoints import ENDPOINTS
 from services.runtime.edge.links import stream_url
 from tests.conftest import free_port_block
 
@@ -78,12 +79,7 @@ def start_launch(
 
 def _endpoints_off(args: tuple[str, ...]) -> list[str]:
     """The core's protocol endpoints off unless ``args`` set their ports (never 9090/8765 here)."""
-    return [
-        part
-        for flag in ("--rosbridge-port", "--foxglove-port")
-        if flag not in args
-        for part in (flag, "0")
-    ]
+    return [part for endpoint in ENDPOINTS if endpoint.flag not in args for part in (endpoint.flag, "0")]
 
 
 def stop_launch(process: BackgroundProcess) -> None:

@@ -78,6 +78,25 @@ def test_lists_topics_services_and_nodes(dashboard) -> None:  # type: ignore[no-
     page.locator('#graph-diagram g[data-name="/drone/pose"]').wait_for(timeout=10_000)
 
 
+def test_a_bridges_ros2_nodes_are_listed_and_drawn_as_ros2(dashboard, system: System) -> None:  # type: ignore[no-untyped-def]
+    from services.runtime.protocol import Entity, ForeignNode
+    from tests.web_ui.threaded_node import ThreadedNode
+
+    page, _ = dashboard
+    bridge = ThreadedNode("fake_ros2_bridge", system.url)  # says what a ROS 2 bridge says
+    talker = ForeignNode(name="/talker", system="ros2", publications=[Entity(name="/chatter", type="std_msgs/msg/String")])
+    try:
+        bridge._loop.call_soon_threadsafe(bridge.node.set_foreign_participants, [talker])
+        item = page.locator('#node-list li[data-node="/talker"]')
+        item.wait_for(timeout=10_000)
+        assert "ROS 2 node, via /fake_ros2_bridge" in item.inner_text()
+        page.click("[data-tab=graph]")
+        page.locator('#graph-diagram g.vertex.node.ros2[data-name="/talker"]').wait_for(timeout=10_000)
+        assert page.locator('#graph-diagram g.vertex.node.ros2[data-name="/sim"]').count() == 0
+    finally:
+        bridge.close()
+
+
 def test_teleop_drives_the_drone_only_when_on(dashboard, system: System) -> None:  # type: ignore[no-untyped-def]
     page, _ = dashboard
     start = pose(page)

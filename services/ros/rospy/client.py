@@ -30,6 +30,7 @@ from services.ros.rospy.core import process
 from services.ros.rospy.exceptions import CoreUnreachableException, ROSException
 from services.ros.rospy.log import logwarn, severity
 from services.runtime.ros_args import ROS_ARGS, RosArguments, parse_ros1_args, split_ros_args
+from services.runtime.settings import NodeSettings, node_settings
 from shared_models import Message
 
 __all__ = ["get_published_topics", "graph_topic", "init_node", "myargv", "spin", "wait_for_message"]
@@ -65,10 +66,12 @@ def init_node(
         name = f"{name}_{os.getpid()}_{time.time_ns() // 1_000_000 % 1_000_000_000}"
     words = list(sys.argv[1:] if argv is None else argv)
     ros1 = parse_ros1_args(split_ros_args(words)[0] if ROS_ARGS in words else words)[1]
-    use_sim_time = _use_sim_time()
+    settings = node_settings()
+    use_sim_time = _use_sim_time(settings)
     node = RuntimeNode(
         name,
-        namespace=os.environ.get("ROS_NAMESPACE") or None,
+        namespace=settings.ros_namespace or None,
+        settings=settings,
         use_global_arguments=argv is None,  # `skydeck run` put the command line's there
         cli_args=_as_ros2_args(ros1) if argv is not None else None,
         parameter_overrides=[Parameter("use_sim_time", value=True)] if use_sim_time else None,
@@ -89,12 +92,10 @@ def init_node(
         _shut_down_on_signals()
 
 
-def _use_sim_time() -> bool:
+def _use_sim_time(settings: NodeSettings) -> bool:
     """``skydeck run --use-sim-time``, or the ``/use_sim_time`` parameter (waiting for the core,
     as rospy's init_node waits for the master)."""
-    from services.runtime.settings import NodeSettings, process_settings
-
-    if process_settings(NodeSettings).use_sim_time:
+    if settings.use_sim_time:
         return True
     warned = False
     while True:

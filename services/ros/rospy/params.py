@@ -24,7 +24,7 @@ from services.ros.rospy.core import get_name, resolve_name
 from services.ros.rospy.exceptions import CoreUnreachableException, ROSException
 from services.runtime.http_client import HttpClient
 from services.runtime.rosparam import RosParamClient, RosParamError, RosParamUnreachable
-from services.runtime.settings import NodeSettings, process_settings
+from services.runtime.settings import node_settings
 
 __all__ = [
     "delete_param",
@@ -60,7 +60,7 @@ class _Server:
         with self._lock:
             loop = bridge.loop
             if self._client is None or self._loop is not loop:
-                settings = process_settings(NodeSettings)
+                settings = node_settings()
                 headers = {"Authorization": f"Bearer {settings.token}"} if settings.token else None
                 self._client = RosParamClient(HttpClient(headers=headers), settings.core_url)
                 self._loop = loop

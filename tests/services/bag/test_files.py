@@ -72,7 +72,7 @@ def test_the_mcap_library_reads_schemas_channels_and_metadata_on_its_own(tmp_pat
         schema = json.loads(pose_schema.data)
         assert "$ref" not in pose_schema.data.decode() and "$defs" not in schema  # self-contained
         stamp = schema["properties"]["header"]["properties"]["stamp"]["properties"]
-        assert set(stamp) == {"sec", "nanosec"}
+        assert set(stamp) == {"sec", "nanosec", "nsec"}  # ROS 2's name and Foxglove's
         channels = {channel.topic: channel for channel in summary.channels.values()}
         assert {c.message_encoding for c in channels.values()} == {"json"}
         assert summary.schemas[channels["/drone/pose"].schema_id].name == "geometry_msgs/msg/PoseStamped"

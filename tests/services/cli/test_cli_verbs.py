@@ -247,9 +247,39 @@ async def test_doctor_says_what_is_wrong_and_what_to_do(core) -> None:
     assert f"[ok] core at {core.url} answers" in out and "[ok] Python 3." in out
     assert ("[FAIL]" in out) == (status == 1), out
     assert "Chromium" in out and "ports" in out and "clock skew" in out
+    # The ports the Skydeck it found holds are as they should be (issue 32): no warning for them.
+    assert f"[ok] ports held by the Skydeck found at {core.url}: {core.port} (core)" in out, out
+    assert status == 0 and out.rstrip().endswith(("Skydeck can run; all checks passed", "warning(s) above)")), out
     url = f"http://127.0.0.1:{free_port()}"
     status, out, _ = await skydeck(url, "doctor")
     assert status == 1 and f"[FAIL] core at {url} not reachable" in out and "-> start it with `skydeck core`" in out
+
+
+def test_doctor_counts_what_only_the_tests_need_as_warnings(monkeypatch, tmp_path) -> None:
+    """A machine that only runs Skydeck: no Chromium, Playwright, docker-compose or Node."""
+    from services.cli import doctor
+
+    monkeypatch.setattr(doctor, "_CHROMIUM", tmp_path / "no-chromium")
+    monkeypatch.setattr(doctor.shutil, "which", lambda name, *args, **kwargs: None)
+    monkeypatch.setattr(doctor.importlib.util, "find_spec", lambda name, *args: None)
+    findings = doctor._browser() + doctor._test_tools()
+    assert [finding.status for finding in findings] == ["warn"] * len(findings) and len(findings) == 4, findings
+    assert {"Chromium", "Playwright", "docker-compose", "Node.js"} == {
+        word for finding in findings for word in ("Chromium", "Playwright", "docker-compose", "Node.js") if word in finding.what
+    }
+
+
+def test_doctor_exits_0_when_nothing_runs_yet_and_the_ports_are_free(monkeypatch, capsys) -> None:
+    """No SKYDECK_CORE_URL and no core: a warning, not a failure; the system can run."""
+    from services.cli import doctor
+    from services.cli.main import main
+
+    monkeypatch.delenv("SKYDECK_CORE_URL", raising=False)
+    monkeypatch.setattr(doctor, "_default_ports", lambda: {free_port(): "core"})
+    monkeypatch.setattr(doctor, "core_url", lambda: f"http://127.0.0.1:{free_port()}")
+    assert main(["doctor"]) == 0
+    out = capsys.readouterr().out
+    assert "[warn] no core running" in out and "[FAIL]" not in out and "Skydeck can run" in out, out
 
 
 # -- shell completion -----------------------------------------------------------------------

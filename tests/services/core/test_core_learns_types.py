@@ -107,8 +107,8 @@ def test_shipped_types_are_never_sent(shipped: str) -> None:
 
 
 def test_rosapi_and_foxglove_describe_a_learned_type_as_a_shipped_one() -> None:
-    from services.core.protocols.foxglove_schema import channel_schema
-    from services.core.protocols.rosapi import typedefs
+    from services.protocols.rosbridge.rosapi import typedefs
+    from shared_models.json_schema import json_schema_text
 
     pkg = package()
     learn_definitions({f"{pkg}/msg/Pose2": "# a pose\ngeometry_msgs/Point position\nuint8[] tag\nint32 MODE=1\n"})
@@ -118,6 +118,6 @@ def test_rosapi_and_foxglove_describe_a_learned_type_as_a_shipped_one() -> None:
     assert ours.fieldnames == ["position", "tag"] and "geometry_msgs/msg/Point" in defs
     assert ours.fieldtypes == ["geometry_msgs/msg/Point", "uint8"] and ours.fieldarraylen == [-1, 0]
     assert (ours.constnames, ours.constvalues) == (["MODE"], ["1"])
-    schema = json.loads(channel_schema(cls))
+    schema = json.loads(json_schema_text(cls))  # a Foxglove channel's, and a recording's
     assert schema["properties"]["position"]["properties"]["x"]["type"] == "number"
     assert schema["properties"]["tag"]["contentEncoding"] == "base64"

@@ -185,9 +185,56 @@ def test_public_api() -> None:
 
 def test_endpoint_ports_reach_the_core_as_its_flags() -> None:
     spec = load_launch_file(default_launch_file())
-    core, *nodes = plan_launch(spec, LaunchOptions(seed=1, rosbridge_port=0, foxglove_port=9876))
+    core, *nodes = plan_launch(spec, LaunchOptions(seed=1, endpoint_ports={"rosbridge": 0, "foxglove": 9876}))
     assert core.args[-4:] == ("--rosbridge-port", "0", "--foxglove-port", "9876")
     assert core.env == {} and all("--rosbridge-port" not in node.args for node in nodes)
     default_core, *_ = plan_launch(spec, LaunchOptions(seed=1))
-    assert "--rosbridge-port" not in default_core.args  # the core's own setting decides
+    assert "--rosbridge-port" not in default_core.args  # at the default base port: the core's own setting
 
+
+def test_endpoint_ports_move_with_the_base_port_unless_given() -> None:
+    """Two launches side by side (issue 32): each core's endpoints move as far as its base port."""
+    spec = load_launch_file(default_launch_file())
+    first, *_ = plan_launch(spec, LaunchOptions(seed=1, base_port=19340))
+    second, *_ = plan_launch(spec, LaunchOptions(seed=1, base_port=19370))
+    assert first.args[-4:] == ("--rosbridge-port", "20430", "--foxglove-port", "20105")
+    assert second.args[-4:] == ("--rosbridge-port", "20460", "--foxglove-port", "20135")
+    given, *_ = plan_launch(spec, LaunchOptions(seed=1, base_port=19340, endpoint_ports={"foxglove": 8765}))
+    assert given.args[-4:] == ("--rosbridge-port", "20430", "--foxglove-port", "8765")
+    options = LaunchOptions(base_port=19340).with_given_ports({"rosbridge": 0, "foxglove": 1})
+    assert options.with_given_ports({"rosbridge": 5}).endpoint_ports == {"rosbridge": 0, "foxglove": 1}
+    assert options.endpoints_notice() == "protocol endpoints foxglove :1"
+    assert LaunchOptions(base_port=19340).endpoints_notice() == (
+        "protocol endpoints rosbridge :20430, foxglove :20105 (moved with --base-port)"
+    )
+    assert LaunchOptions().endpoints_notice() == "protocol endpoints rosbridge :9090, foxglove :8765"
+
+
+@pytest.mark.parametrize(
+    ("options", "says"),
+    [
+        ({"endpoint_ports": {"rosbrige": 1}}, "no protocol endpoint 'rosbrige'"),
+        ({"endpoint_ports": {"foxglove": 70000}}, "--foxglove-port must be a port number 0-65535"),
+    ],
+)
+def test_bad_endpoint_ports_are_one_line(options: dict[str, object], says: str) -> None:
+    with pytest.raises(LaunchError, match=says):
+        LaunchOptions(**options)  # type: ignore[arg-type]
+
+
+def test_an_endpoint_moved_past_65535_is_one_line_when_the_launch_starts_a_core() -> None:
+    spec = load_launch_file(default_launch_file())
+    with pytest.raises(LaunchError, match="--base-port 65000 moves the rosbridge endpoint to port 66090, past 65535"):
+        plan_launch(spec, LaunchOptions(seed=1, base_port=65000))
+    given = LaunchOptions(seed=1, base_port=65000, endpoint_ports={"rosbridge": 0, "foxglove": 0})
+    assert plan_launch(spec, given)[0].args[-4:] == ("--rosbridge-port", "0", "--foxglove-port", "0")
+    joining = LaunchOptions(seed=1, base_port=65000, exclude=("core",))  # a running core: none planned
+    assert [plan.name for plan in plan_launch(spec, joining)] == ["sim", "perception", "control", "ai"]
+
+def test_ros2_adds_the_bridge_on_the_port_after_the_last() -> None:
+    spec = load_launch_file(services.launch.find_launch_file("robot"))
+    plans = plan_launch(spec, LaunchOptions(seed=1, base_port=9100, ros2=True))
+    assert [(plan.name, plan.port) for plan in plans] == [("core", 9100), ("sim", 9101), ("ros2_bridge", 9102)]
+    assert default_command(plans[-1])[-4:] == ["run", "ros2_bridge", "--port", "9102"]
+    with pytest.raises(LaunchError, match="past 65535"):
+        plan_launch(spec, LaunchOptions(seed=1, base_port=65534, ros2=True))

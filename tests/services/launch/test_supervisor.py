@@ -47,7 +47,7 @@ NODE_PROGRAM = textwrap.dedent(
     parser.add_argument("--grandchild")
     parser.add_argument("--no-health", action="store_true")
     parser.add_argument("--ignore-term", action="store_true")
-    args = parser.parse_args()
+    args, _ = parser.parse_known_args()  # a core's endpoint ports too (--rosbridge-port ...)
     print(f"hello on {args.port} core={os.environ.get('SKYDECK_CORE_URL')} "
           f"extra={os.environ.get('EXTRA', '')}")
     if args.exit is not None:
