@@ -134,20 +134,22 @@ export class WindowPanel {
         this.sliders.delete(name);
       }
     }
-    for (const trackbar of trackbars) {
+    trackbars.forEach((trackbar, index) => {
       let slider = this.sliders.get(trackbar.name);
       if (!slider) {
         slider = this._slider(trackbar.name);
         this.sliders.set(trackbar.name, slider);
       }
-      this.trackbarsEl.append(slider.row); // in the program's order
+      // In the program's order; a row already in place is not moved (that would end a drag).
+      const here = this.trackbarsEl.children[index] || null;
+      if (here !== slider.row) this.trackbarsEl.insertBefore(slider.row, here);
       slider.input.min = String(trackbar.minimum);
       slider.input.max = String(trackbar.maximum);
       if (performance.now() - slider.movedAt > SLIDER_QUIET_MS) {
         slider.input.value = String(trackbar.value);
         slider.output.textContent = String(trackbar.value);
       }
-    }
+    });
   }
 
   _slider(name) {
