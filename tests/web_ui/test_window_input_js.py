@@ -11,7 +11,7 @@ from collections.abc import Iterator
 import pytest
 
 from tests.web_ui.conftest import open_dashboard
-from tests.web_ui.system import System, started
+from tests.web_ui.system import started
 
 pytestmark = [pytest.mark.browser, pytest.mark.timeout(60)]
 
