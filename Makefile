@@ -36,8 +36,11 @@ $(VENV)/.vision-installed: $(STAMP) requirements-vision.lock
 	$(BIN)/python -m pip install --quiet --require-hashes --no-deps -r requirements-vision.lock
 	touch $@
 
+# The drone workshop, the drone landed and the AI waiting for /ai/start (the dashboard's Start
+# mission button); `make up MISSION=true` starts the AI's mission at once.
+MISSION ?= false
 up: install
-	$(BIN)/skydeck launch
+	$(BIN)/skydeck launch start_mission:=$(MISSION)
 
 # The robot world (the second seed's Neato class): the core and the simulator's room.
 robot: install
@@ -45,11 +48,14 @@ robot: install
 
 # System packages the tests drive for real: Debian's Chromium (browser tests), the
 # docker-compose tool (validates the compose files without an engine), zsh (completion),
-# cmake and g++ (the ROS 2 interface build) and iproute2 (the two-machine bridge test's netns).
+# cmake and g++ (the ROS 2 interface build), iproute2 (the two-machine bridge test's netns), and
+# Mesa's EGL and llvmpipe (libegl1, libgl1-mesa-dri: the camera's OpenGL renderer; without them
+# the simulator falls back to PyBullet's, slower, and says so).
 test-deps:
 	@command -v chromium >/dev/null && command -v docker-compose >/dev/null && command -v zsh >/dev/null && \
-		command -v cmake >/dev/null && command -v g++ >/dev/null && command -v ip >/dev/null || \
-		{ apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium docker-compose zsh cmake g++ make iproute2 >/dev/null; }
+		command -v cmake >/dev/null && command -v g++ >/dev/null && command -v ip >/dev/null && \
+		ldconfig -p | grep -q 'libEGL.so.1 ' && ls /usr/lib/*/dri/swrast_dri.so >/dev/null 2>&1 || \
+		{ apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium docker-compose zsh cmake g++ make iproute2 libegl1 libgl1-mesa-dri >/dev/null; }
 
 test: install install-vision test-deps install-ros2
 	docker-compose -f docker-compose.yml config --quiet

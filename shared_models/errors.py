@@ -26,6 +26,8 @@ launcher and the CLI all descend from one class. The whole tree::
     ├── HttpError                           -    -     an internal HTTP request got no reply
     │   ├── HttpTimeout / HttpUnreachable
     ├── InvalidCommand (ValueError)         -    -     a setpoint or cmd_vel the physics refuses
+    ├── UnknownWorld (LookupError)          -    -     a world name the table of worlds does not have
+    ├── GlUnavailable (RuntimeError)        -    -     no OpenGL for the camera (it falls back to PyBullet's renderer)
     ├── LaunchError                         -    -     a launch cannot go ahead
     │   └── LaunchFileError                            the launch file is missing or wrong
     ├── PackageNotFound (LookupError)       -    -     a roslaunch file's package or node type is not there

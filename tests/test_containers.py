@@ -32,7 +32,8 @@ from services.protocols.core_process import bind_endpoints
 from services.protocols.endpoints import ENDPOINTS
 from services.protocols.settings import CoreProcessSettings
 from services.runtime.ports import free_port_block
-from sim_server.node import SimSettings
+from sim_server.robot.settings import RobotSettings
+from sim_server.settings import SimSettings
 from tests.compose_config import (
     COMPOSE_FILE,
     DOCKERFILE,
@@ -141,7 +142,7 @@ def test_the_robot_worlds_settings_reach_its_simulator() -> None:
     assert sim_env == {"SKYDECK_SIM_SPEED": "max", "SKYDECK_SIM_SEED": "7", "SKYDECK_SIM_ROBOTS": "2",
                        "SKYDECK_SIM_OBSTACLES": "3"}  # fmt: skip
     settings = {key.removeprefix("SKYDECK_SIM_").lower(): value for key, value in sim_env.items()}
-    SimSettings.model_validate({"world": "robot", **settings})  # values the robot world takes
+    RobotSettings.model_validate(settings)  # values the robot world takes
 
 
 # -- both commands, resolved --------------------------------------------------------------------
@@ -150,7 +151,7 @@ def test_the_robot_worlds_settings_reach_its_simulator() -> None:
 def test_each_command_starts_what_its_launch_file_starts(
     variant: str, started: dict[str, dict[str, Any]]
 ) -> None:
-    spec = load_launch_file(find_launch_file(LAUNCH_FILE[variant]))
+    spec = load_launch_file(find_launch_file(LAUNCH_FILE[variant]), {})  # the arguments' defaults
     plans = plan_launch(spec, LaunchOptions(seed=1))
     assert set(started) == {plan.name for plan in plans}, "nor the other world's nodes"
     for plan in plans:

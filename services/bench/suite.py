@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from services.bench.camera import camera_family
 from services.bench.report import Result
 from services.bench.runner import Family, Readings, Trial, median_of
 from services.bench.topics import CoreHolder, run_topic_pair
@@ -94,6 +95,7 @@ class Suite:
             self._startup(),
             self._registry(),
             self._viewers(),
+            camera_family(self.core, window_s=max(self.settings.sim_window_s, 3.0), repetitions=self.settings.sim_repetitions),
             self._rosbridge(),
             self._bag(),
             *self._ros2(),

@@ -6,8 +6,8 @@ with a ball and a forward camera on every robot.
 Adds, per robot under its namespace, ``camera/image_raw`` (sensor_msgs/Image, rgb8) and
 ``camera/camera_info`` (:mod:`sim_server.soccer.cameras`), with ``base_link -> camera`` on
 ``/tf_static``; and the ball's truth on ``/simulator/balls`` (geometry_msgs/PoseArray in ``map``,
-10 Hz). ``/simulator/world`` says ``robot``: to every client of the robot world (the dashboard,
-behaviours, judges) this is that world, with one more body in it.
+10 Hz). Its description ``extends`` the robot world's: to every client of the robot world (the
+dashboard, behaviours, judges) this is that world, with one more body in it.
 """
 
 from __future__ import annotations
@@ -20,10 +20,11 @@ from shared_models.geometry_msgs import PoseArray, Quaternion, Transform, Transf
 from shared_models.std_msgs import Header
 from sim_server.robot.limits import TRUTH_EVERY_STEPS
 from sim_server.robot.node import RobotSimNode
+from sim_server.robot.settings import RobotSettings
 from sim_server.robot.world import RobotWorldConfig
-from sim_server.settings import SimSettings
 from sim_server.soccer.cameras import RobotCameras, camera_frame
 from sim_server.soccer.limits import CAMERA_FORWARD_M, CAMERA_HEIGHT_M, CAMERA_PITCH_DEG
+from sim_server.soccer.settings import SoccerSettings
 from sim_server.soccer.world import SoccerWorld
 
 __all__ = ["BALLS_TOPIC", "SoccerSimNode"]
@@ -46,8 +47,8 @@ def _pitched_optical() -> Quaternion:
     )
 
 
-def _build_world(sim: SimSettings) -> SoccerWorld:
-    return SoccerWorld(RobotWorldConfig(seed=sim.seed, robots=sim.robot_count, obstacles=sim.obstacle_count))
+def _build_world(sim: RobotSettings) -> SoccerWorld:
+    return SoccerWorld(RobotWorldConfig(seed=sim.seed, robots=sim.robots, obstacles=sim.obstacles))
 
 
 class SoccerSimNode(RobotSimNode):
@@ -55,8 +56,8 @@ class SoccerSimNode(RobotSimNode):
 
     WORLD_NAME = "soccer"
 
-    def __init__(self, sim: SimSettings | None = None, settings: NodeSettings | None = None) -> None:
-        super().__init__(sim or SimSettings(world="soccer"), settings, _build_world)
+    def __init__(self, sim: SoccerSettings | None = None, settings: NodeSettings | None = None) -> None:
+        super().__init__(sim or SoccerSettings(), settings, _build_world)
         self.world: SoccerWorld
         self.balls_publisher = self.create_publisher(PoseArray, BALLS_TOPIC, 10)
         self.cameras = RobotCameras(self, self.namespaces, self.world.robot_pose, lambda: self.world.client)

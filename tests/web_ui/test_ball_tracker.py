@@ -48,6 +48,8 @@ def test_the_ball_tracker_pushes_the_ball_and_its_windows_are_in_the_dashboard(s
         ros_file(soccer, TRACKER, sim_time=False) as tracker,
         open_dashboard(browser, soccer.url, "window.skydeck && window.skydeck.coreReachable") as (page, recorder),
     ):
+        # The soccer room extends the robot world: the dashboard shows it as that world.
+        page.wait_for_function("window.skydeck.world.kind === 'robot' && window.skydeck.room.robots.length === 1", timeout=20_000)  # type: ignore[attr-defined]
         page.click("button[data-tab='windows']")  # type: ignore[attr-defined]
         page.wait_for_function(  # type: ignore[attr-defined]
             "['video_window', 'binary_window'].every(n => window.skydeck.windows.some(w => w.name === n && w.frames > 2))",

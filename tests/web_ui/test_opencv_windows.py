@@ -56,7 +56,7 @@ def _pixel_near(page: object, x: int, y: int, rgb: tuple[int, int, int], toleran
           const want = {list(rgb)};
           return p !== null && p.every((v, i) => Math.abs(v - want[i]) <= {tolerance});
         }}""",
-        timeout=15_000,
+        timeout=30_000,
     )
 
 
@@ -68,7 +68,7 @@ def test_a_nodes_window_is_a_live_panel_with_slider_mouse_and_keys(core: System,
 def _use(page: object, recorder: Recorder, node: BackgroundProcess) -> None:
     page.click("button[data-tab='windows']")  # type: ignore[attr-defined]
     page.wait_for_function(  # type: ignore[attr-defined]
-        f"window.skydeck.windows.some(w => w.topic === '{TOPIC}' && w.frames > 0)", timeout=20_000
+        f"window.skydeck.windows.some(w => w.topic === '{TOPIC}' && w.frames > 0)", timeout=40_000
     )
     shown = page.evaluate(f"window.skydeck.windows.find(w => w.topic === '{TOPIC}')")  # type: ignore[attr-defined]
     assert (shown["name"], shown["node"], shown["width"], shown["height"]) == ("canvas", "/window_node", 160, 120)
@@ -80,21 +80,21 @@ def _use(page: object, recorder: Recorder, node: BackgroundProcess) -> None:
     # The slider: the node's callback runs (in its drawing thread, the one that calls waitKey)
     # and what it draws changes.
     page.locator(f"{PANEL} input[data-trackbar='level']").fill("200")  # type: ignore[attr-defined]
-    node.wait_for_line("TRACKBAR 200 drawing", 15)
+    node.wait_for_line("TRACKBAR 200 drawing", 30)
     _pixel_near(page, 10, 10, (200, 200, 200))
 
     # A click at image pixel (40, 30): the node's mouse callback gets those coordinates, the
     # left button's flag and its param, and draws a red dot there.
     point = page.evaluate(f"window.skydeck.windowPoint('{TOPIC}', 40, 30)")  # type: ignore[attr-defined]
     page.mouse.click(point["x"], point["y"])  # type: ignore[attr-defined]
-    node.wait_for_line("CLICK 40 30 1 clicked drawing", 15)
+    node.wait_for_line("CLICK 40 30 1 clicked drawing", 30)
     _pixel_near(page, 40, 30, (255, 0, 0), tolerance=40)
 
     # A key typed in the panel (focused by the click) is what cv2.waitKey returns.
     page.keyboard.press("q")  # type: ignore[attr-defined]
-    node.wait_for_line("KEY 113 drawing", 15)
+    node.wait_for_line("KEY 113 drawing", 30)
     page.keyboard.press("Escape")  # type: ignore[attr-defined]
-    node.wait_for_line("KEY 27 drawing", 15)
+    node.wait_for_line("KEY 27 drawing", 30)
     assert page.evaluate(f"window.skydeck.windows.find(w => w.topic === '{TOPIC}').input.refused") == 0  # type: ignore[attr-defined]
     assert recorder.errors == []
     assert not any("Traceback" in line for line in node.lines), node.tail()
@@ -103,12 +103,12 @@ def _use(page: object, recorder: Recorder, node: BackgroundProcess) -> None:
 def test_images_are_sent_only_while_the_tab_is_shown(core: System, node: BackgroundProcess, browser: object) -> None:
     with open_dashboard(browser, core.url, "window.skydeck && window.skydeck.coreReachable") as (page, recorder):
         page.click("button[data-tab='windows']")  # type: ignore[attr-defined]
-        page.wait_for_function(f"window.skydeck.windows.some(w => w.topic === '{TOPIC}' && w.frames > 2)", timeout=20_000)  # type: ignore[attr-defined]
+        page.wait_for_function(f"window.skydeck.windows.some(w => w.topic === '{TOPIC}' && w.frames > 2)", timeout=40_000)  # type: ignore[attr-defined]
         subscribers = f"(window.skydeck.graph.topics.find(t => t.name === '{TOPIC}') || {{subscribers: []}}).subscribers.length"
-        page.wait_for_function(f"{subscribers} > 0", timeout=10_000)  # type: ignore[attr-defined]
+        page.wait_for_function(f"{subscribers} > 0", timeout=20_000)  # type: ignore[attr-defined]
         page.click("button[data-tab='map']")  # type: ignore[attr-defined]
         page.wait_for_function(f"!window.skydeck.sockets().some(s => s.topic === '{TOPIC}')", timeout=10_000)  # type: ignore[attr-defined]
         # Nobody reads the window's topic any more, so the node encodes nothing (it asks before each image).
-        page.wait_for_function(f"{subscribers} === 0", timeout=15_000)  # type: ignore[attr-defined]
+        page.wait_for_function(f"{subscribers} === 0", timeout=30_000)  # type: ignore[attr-defined]
         assert page.evaluate("window.skydeck.windows.length") == 1  # type: ignore[attr-defined]  # still listed
         assert recorder.errors == []

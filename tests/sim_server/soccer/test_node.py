@@ -53,7 +53,11 @@ def test_the_robots_camera_renders_only_while_read(room: System) -> None:
     assert types["/camera/camera_info"] == "sensor_msgs/msg/CameraInfo"
     assert types["/simulator/balls"] == "geometry_msgs/msg/PoseArray"
     assert latest(room, "/camera/image_raw") is None  # nobody has read it: never rendered
-    assert latest(room, "/simulator/world")["world"] == "robot"  # every robot-world client works as is
+    assert latest(room, "/simulator/world")["world"] == "soccer"
+    soccer = latest(room, "/api/config")["worlds"]["soccer"]
+    assert soccer["extends"] == "robot"  # the robot world's clients (the dashboard) show it as that world
+    assert soccer["topics"]["camera_image"] == "camera/image_raw" and soccer["topics"]["balls"] == "/simulator/balls"
+    assert soccer["room_half_size_m"] == 4.0 and soccer["ball_radius_m"] == pytest.approx(0.095)
     with Recorder(room, "/camera/image_raw") as images, Recorder(room, "/camera/camera_info") as infos:
         wait_for(room, "/camera/image_raw", lambda m: len(images.messages) >= 3, timeout_s=30)
     image = images.messages[-1]
@@ -100,10 +104,11 @@ def test_with_several_robots_each_has_its_camera_in_its_namespace() -> None:
 
 def test_the_soccer_launch_file_starts_the_core_and_the_soccer_room() -> None:
     path = find_launch_file("soccer")
-    plans = plan_launch(load_launch_file(path, {"camera_rate": "12"}), LaunchOptions(seed=3, robots=2, speed="max"))
+    options = LaunchOptions(seed=3, speed="max", world_options={"robots": 2, "obstacles": 0})
+    plans = plan_launch(load_launch_file(path, {"camera_rate": "12"}), options)
     assert [plan.name for plan in plans] == ["core", "sim"]
     assert plans[1].args == (
-        "--world", "soccer", "--speed", "max", "--seed", "3", "--robots", "2", "--camera-rate", "12",
+        "--world", "soccer", "--speed", "max", "--seed", "3", "--robots", "2", "--obstacles", "0", "--camera-rate", "12",
     )  # fmt: skip
     default = plan_launch(load_launch_file(path, {}), LaunchOptions(seed=3))[1]
     assert default.args[-2:] == ("--camera-rate", "5")

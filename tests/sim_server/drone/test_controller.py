@@ -6,9 +6,9 @@ import math
 
 import pytest
 
-from sim_server.airframe import IRIS, ROTOR_SPIN
-from sim_server.controller import CascadedController, Mixer, Reference
-from sim_server.limits import GRAVITY_M_S2, MAX_SPEED_XY, MAX_SPEED_Z, MAX_TILT_DEG
+from sim_server.drone.airframe import IRIS, ROTOR_SPIN
+from sim_server.drone.controller import CascadedController, Mixer, Reference
+from sim_server.drone.limits import GRAVITY_M_S2, MAX_SPEED_XY, MAX_SPEED_Z, MAX_TILT_DEG
 
 LEVEL = (0.0, 0.0, 0.0, 1.0)
 STILL = (0.0, 0.0, 0.0)

@@ -1,13 +1,14 @@
-"""The simulator package's public surface, pinned so the node can rely on it."""
+"""The drone world's public surface, pinned so the node and the workshop's nodes can rely on it."""
 
 from __future__ import annotations
 
 import sim_server
-from sim_server import limits
+import sim_server.drone
+from sim_server.drone import limits
 
 
 def test_public_names() -> None:
-    assert sorted(sim_server.__all__) == [
+    assert sorted(sim_server.drone.__all__) == [
         "ControlMode",
         "DroneState",
         "InvalidCommand",
@@ -15,15 +16,16 @@ def test_public_names() -> None:
         "WorldConfig",
         "render_jpeg",
     ]
-    for name in sim_server.__all__:
-        assert getattr(sim_server, name) is not None
+    for name in sim_server.drone.__all__:
+        assert getattr(sim_server.drone, name) is not None
+    assert sim_server.__all__ == ["InvalidCommand"]
 
 
 def test_world_module_exports_what_the_node_imports() -> None:
-    from sim_server.world import InvalidCommand, World, WorldConfig
+    from sim_server.drone.world import InvalidCommand, World, WorldConfig
 
-    assert issubclass(InvalidCommand, ValueError)
-    assert World is sim_server.World and WorldConfig is sim_server.WorldConfig
+    assert issubclass(InvalidCommand, ValueError) and InvalidCommand is sim_server.InvalidCommand
+    assert World is sim_server.drone.World and WorldConfig is sim_server.drone.WorldConfig
 
 
 def test_limits_the_node_and_control_share() -> None:

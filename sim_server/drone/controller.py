@@ -23,8 +23,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from sim_server.airframe import IRIS, Airframe
-from sim_server.limits import (
+from sim_server.drone.airframe import IRIS, Airframe
+from sim_server.drone.limits import (
     GRAVITY_M_S2,
     HORIZONTAL_CONTROL_MIN_Z_M,
     MAX_SPEED_XY,

@@ -10,7 +10,7 @@ import math
 import random
 from dataclasses import dataclass
 
-from sim_server.limits import (
+from sim_server.drone.limits import (
     ARENA_HALF_SIZE_M,
     BOX_MIN_START_DISTANCE_M,
     BOX_SIZE_M,

@@ -8,8 +8,8 @@ from collections.abc import Callable
 import pytest
 from PIL import Image
 
-from sim_server.camera import render_jpeg
-from sim_server.world import World
+from sim_server.drone.camera import render_jpeg
+from sim_server.drone.world import World
 
 
 def test_renders_a_jpeg_of_the_requested_size(make_world: Callable[..., World]) -> None:

@@ -10,7 +10,8 @@ import pytest
 from services.runtime import NodeSettings, Parameter
 from services.runtime.parameters import InvalidParameterValueException
 from services.runtime.ros_args import RosArguments, parse_ros_args, set_process_ros_arguments
-from sim_server.node import SimSettings, SimulatorNode
+from sim_server.drone.node import DroneSimNode
+from sim_server.drone.settings import DroneSettings
 
 
 @pytest.fixture
@@ -19,28 +20,28 @@ def ros_args() -> Iterator[None]:
     set_process_ros_arguments(RosArguments())
 
 
-def _sim(sim: SimSettings) -> SimulatorNode:
-    node = SimulatorNode(sim, NodeSettings(port=0))
+def _sim(sim: DroneSettings) -> DroneSimNode:
+    node = DroneSimNode(sim, NodeSettings(port=0))
     node.world.close()
     return node
 
 
 def test_the_world_options_are_read_only_parameters(ros_args) -> None:
-    sim = _sim(SimSettings(seed=3, boxes=2, speed=None))
+    sim = _sim(DroneSettings(seed=3, boxes=2, speed=None))
     assert [sim.get_parameter(n).value for n in ("seed", "boxes", "speed")] == [3, 2, "max"]
     [result] = sim.set_parameters([Parameter("seed", value=4)])
     assert not result.successful and "read-only" in result.reason
-    drawn = _sim(SimSettings())
+    drawn = _sim(DroneSettings())
     assert drawn.get_parameter("seed").value == drawn.world.seed and drawn.get_parameter("speed").value == 1.0
 
 
 def test_an_override_builds_the_world(ros_args) -> None:
     set_process_ros_arguments(parse_ros_args(["-p", "seed:=5", "-p", "boxes:=3", "-p", "speed:=2"]))
-    sim = _sim(SimSettings(seed=1))
+    sim = _sim(DroneSettings(seed=1))
     assert sim.world.seed == 5 and sim.sim.boxes == 3 and sim.sim.speed == 2.0
     set_process_ros_arguments(parse_ros_args(["-p", "speed:=fast"]))
     with pytest.raises(InvalidParameterValueException, match="'speed'"):
-        _sim(SimSettings())
+        _sim(DroneSettings())
     set_process_ros_arguments(parse_ros_args(["-p", "boxes:=99"]))
     with pytest.raises(InvalidParameterValueException, match="outside its range"):
-        _sim(SimSettings())
+        _sim(DroneSettings())

@@ -18,9 +18,9 @@ from __future__ import annotations
 import enum
 import math
 
-from shared_models.errors import SkydeckError
-from sim_server.controller import Reference
-from sim_server.limits import (
+from sim_server.checks import InvalidCommand, finite_number
+from sim_server.drone.controller import Reference
+from sim_server.drone.limits import (
     CEILING_M,
     FLY_HALF_SIZE_M,
     HORIZONTAL_CONTROL_MIN_Z_M,
@@ -31,24 +31,10 @@ from sim_server.limits import (
     STREAM_TIMEOUT_S,
 )
 
-__all__ = ["CommandArbiter", "ControlMode", "InvalidCommand", "finite_number"]
+__all__ = ["CommandArbiter", "ControlMode", "InvalidCommand", "check_cmd_vel", "check_setpoint"]
 
 _LEASH_M = 1.0
 """How far a cmd_vel-driven target may run ahead of a drone that cannot keep up."""
-
-
-class InvalidCommand(SkydeckError, ValueError):
-    """Raised for a setpoint or cmd_vel that is not finite or is out of bounds.
-
-    Carries the command name, the offending field and its value; the message names all three
-    and the accepted range. The world's state is unchanged when this is raised.
-    """
-
-    def __init__(self, command: str, field: str, value: object, reason: str) -> None:
-        self.command = command
-        self.field = field
-        self.value = value
-        super().__init__(f"{command}: {field}={value!r} {reason}")
 
 
 class ControlMode(enum.Enum):
@@ -60,17 +46,6 @@ class ControlMode(enum.Enum):
     """Following cmd_vel (teleop)."""
     HOLD = "AUTO.LOITER"
     """No fresh input: holding position (also the offboard failsafe)."""
-
-
-def finite_number(command: str, field: str, value: object) -> float:
-    """``value`` as a float; InvalidCommand naming ``command`` and ``field`` if it is not one."""
-    try:
-        number = float(value)  # type: ignore[arg-type]
-    except (TypeError, ValueError):
-        raise InvalidCommand(command, field, value, "is not a number") from None
-    if isinstance(value, bool) or not math.isfinite(number):
-        raise InvalidCommand(command, field, value, "is not a finite number")
-    return number
 
 
 def _within(command: str, field: str, value: float, low: float, high: float) -> float:

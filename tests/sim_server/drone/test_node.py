@@ -14,12 +14,13 @@ from services.runtime.edge.links import stream_url
 from shared_models.geometry_msgs import Point, PoseArray, PoseStamped
 from shared_models.mavros_msgs import PositionTarget
 from shared_models.std_msgs import Header
-from sim_server.node import SimSettings, SimulatorNode
+from sim_server.drone.node import DroneSimNode
+from sim_server.drone.settings import DroneSettings
 from tests.conftest import wait_until
 
 
 def _sim(seed: int = 1):
-    return lambda settings: SimulatorNode(SimSettings(seed=seed, boxes=8, speed=None), settings)
+    return lambda settings: DroneSimNode(DroneSettings(seed=seed, boxes=8, speed=None), settings)
 
 
 class Pilot(Node):

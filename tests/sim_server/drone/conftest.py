@@ -6,8 +6,8 @@ from collections.abc import Callable, Iterator
 
 import pytest
 
-from sim_server.world import World, WorldConfig
-from tests.sim_server.flight import stream_setpoint
+from sim_server.drone.world import World, WorldConfig
+from tests.sim_server.drone.flight import stream_setpoint
 
 
 @pytest.fixture

@@ -1,6 +1,6 @@
 """How fast the world steps, against a bare PyBullet loop of the same scene.
 
-Run ``python -m sim_server.speed`` for a one-off reading; the benchmark suite calls
+Run ``python -m sim_server.drone.speed`` for a one-off reading; the benchmark suite calls
 :func:`measure`. Timings live here and in the benchmark, never in pass/fail tests.
 """
 
@@ -12,8 +12,8 @@ from dataclasses import dataclass
 
 import pybullet as p
 
-from sim_server.limits import PHYSICS_HZ
-from sim_server.world import World, WorldConfig
+from sim_server.drone.limits import PHYSICS_HZ
+from sim_server.drone.world import World, WorldConfig
 
 __all__ = ["SpeedReading", "measure"]
 

@@ -1,7 +1,8 @@
-"""Arena bounds, speed limits and timings of the simulated world, in one place.
+"""The drone world's numbers in one place: arena bounds, speed limits, timings, boxes.
 
-The controller, the command checks and the simulator node all import these, so a limit that a
-user sees in an error message is the limit the physics enforces.
+The controller, the command checks, the simulator node and the workshop's nodes (control, the
+AI) all import these, so a limit that a user sees in an error message is the limit the physics
+enforces. Pure constants: importing this module loads no PyBullet.
 """
 
 from __future__ import annotations

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from sim_server.limits import GRAVITY_M_S2
+from sim_server.drone.limits import GRAVITY_M_S2
 
 
 @dataclass(frozen=True, slots=True)

@@ -7,8 +7,8 @@ from collections.abc import Callable
 
 import pytest
 
-from sim_server.commands import ControlMode
-from sim_server.limits import (
+from sim_server.drone.commands import ControlMode
+from sim_server.drone.limits import (
     ARENA_HALF_SIZE_M,
     BOX_MIN_START_DISTANCE_M,
     BOX_SIZE_M,
@@ -17,8 +17,8 @@ from sim_server.limits import (
     PHYSICS_DT_S,
     PHYSICS_HZ,
 )
-from sim_server.world import InvalidCommand, Pose, World, WorldConfig
-from tests.sim_server.flight import stream_setpoint
+from sim_server.drone.world import InvalidCommand, Pose, World, WorldConfig
+from tests.sim_server.drone.flight import stream_setpoint
 
 MakeWorld = Callable[..., World]
 TUMBLE_MARGIN_M = 2.0  # a box landing on a corner rolls up to ~1.7 m

@@ -6,14 +6,14 @@ import math
 
 import pytest
 
-from sim_server.commands import (
+from sim_server.drone.commands import (
     CommandArbiter,
     ControlMode,
     InvalidCommand,
     check_cmd_vel,
     check_setpoint,
 )
-from sim_server.limits import (
+from sim_server.drone.limits import (
     MAX_SPEED_XY,
     MAX_SPEED_Z,
     MAX_YAW_RATE,

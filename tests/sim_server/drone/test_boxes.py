@@ -7,8 +7,8 @@ import random
 
 import pytest
 
-from sim_server.boxes import BOX_MIN_SEPARATION_M, random_quaternion, sample_boxes
-from sim_server.limits import (
+from sim_server.drone.boxes import BOX_MIN_SEPARATION_M, random_quaternion, sample_boxes
+from sim_server.drone.limits import (
     ARENA_HALF_SIZE_M,
     BOX_MIN_START_DISTANCE_M,
     BOX_SIZE_M,

@@ -6,16 +6,16 @@ import math
 
 import pytest
 
-from sim_server.commands import ControlMode
-from sim_server.limits import (
+from sim_server.drone.commands import ControlMode
+from sim_server.drone.limits import (
     HORIZONTAL_CONTROL_MIN_Z_M,
     MAX_SPEED_XY,
     MAX_SPEED_Z,
     ON_GROUND_Z_M,
     STREAM_TIMEOUT_S,
 )
-from sim_server.world import World
-from tests.sim_server.flight import STEPS_PER_SETPOINT, idle, stream_cmd_vel, stream_setpoint
+from sim_server.drone.world import World
+from tests.sim_server.drone.flight import STEPS_PER_SETPOINT, idle, stream_cmd_vel, stream_setpoint
 
 SPEED_TOLERANCE = 0.3  # m/s over the limit, for the velocity loop's own overshoot
 

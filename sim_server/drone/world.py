@@ -2,7 +2,7 @@
 
 Example::
 
-    from sim_server.world import World, WorldConfig
+    from sim_server.drone.world import World, WorldConfig
 
     world = World(WorldConfig(seed=1, boxes=8))
     world.set_setpoint(0.0, 0.0, 3.0, yaw=0.0)   # re-send at ~30 Hz, or the failsafe holds
@@ -25,26 +25,26 @@ from dataclasses import dataclass, field
 
 import pybullet as p
 
-from sim_server.airframe import IRIS, Airframe
-from sim_server.boxes import sample_boxes
 from sim_server.bullet import BulletWorld
-from sim_server.commands import CommandArbiter, ControlMode, InvalidCommand
-from sim_server.controller import CascadedController
-from sim_server.limits import (
+from sim_server.checks import InvalidCommand
+from sim_server.drone.airframe import IRIS, Airframe
+from sim_server.drone.boxes import sample_boxes
+from sim_server.drone.commands import CommandArbiter, ControlMode
+from sim_server.drone.controller import CascadedController
+from sim_server.drone.limits import (
     DEFAULT_BOXES,
+    GRAVITY_M_S2,
     MAX_BOXES,
     ON_GROUND_Z_M,
     PHYSICS_DT_S,
+    PHYSICS_HZ,
     START_XY_M,
 )
-from sim_server.scene import BOX_COLOURS, create_box, create_drone, create_ground
+from sim_server.drone.scene import BOX_COLOURS, create_box, create_drone, create_ground
+from sim_server.geometry import Pose, Vector3, yaw_of
 from sim_server.settings import draw_seed
 
-__all__ = ["DroneState", "InvalidCommand", "World", "WorldConfig", "yaw_of"]
-
-Vector3 = tuple[float, float, float]
-Quaternion = tuple[float, float, float, float]
-Pose = tuple[Vector3, Quaternion]
+__all__ = ["DroneState", "InvalidCommand", "Pose", "World", "WorldConfig"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -81,6 +81,9 @@ class DroneState:
 
 class World(BulletWorld):
     """A headless PyBullet world with one quadrotor and ``config.boxes`` boxes."""
+
+    PHYSICS_HZ = PHYSICS_HZ
+    GRAVITY_M_S2 = GRAVITY_M_S2  # the controller's hover thrust assumes the same
 
     def __init__(self, config: WorldConfig | None = None) -> None:
         super().__init__()
@@ -131,9 +134,7 @@ class World(BulletWorld):
 
     def step(self, n: int = 1) -> None:
         """Advance the world by ``n`` physics steps of 1/240 s."""
-        self._check_open()
-        if n < 0:
-            raise ValueError(f"n={n} must be >= 0")
+        self._check_steps(n)
         # Locals: this loop is the simulator's hot path.
         client = self._client
         drone = self._drone
@@ -235,8 +236,3 @@ class World(BulletWorld):
         self._controller.reset()
         self._arbiter.reset(*self._start, yaw=0.0)
 
-
-def yaw_of(q: Quaternion) -> float:
-    """Heading (rotation about world z) of an orientation quaternion (x, y, z, w), in rad."""
-    qx, qy, qz, qw = q
-    return math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))

@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from sim_server.limits import PHYSICS_HZ
-from sim_server.world import World
+from sim_server.drone.limits import PHYSICS_HZ
+from sim_server.drone.world import World
 
 STEPS_PER_SETPOINT = PHYSICS_HZ // 30  # the control node's 30 Hz stream
 

@@ -7,9 +7,9 @@ from __future__ import annotations
 
 import pybullet as p
 
-from sim_server.airframe import Airframe
-from sim_server.boxes import BoxSpawn
-from sim_server.limits import BOX_MASS_KG, BOX_SIZE_M
+from sim_server.drone.airframe import Airframe
+from sim_server.drone.boxes import BoxSpawn
+from sim_server.drone.limits import BOX_MASS_KG, BOX_SIZE_M
 
 __all__ = ["create_box", "create_drone", "create_ground"]
 
