@@ -19,6 +19,7 @@ launcher and the CLI all descend from one class. The whole tree::
     │   ├── ServiceCallRejectedError       4xx   -     its node refused the request
     │   └── ServiceCallFailed              its   -     a call through the core reached no service
     ├── ServiceHandlerError                500   -     a handler raised or returned the wrong type
+    ├── GoalTransitionError                 -    -     an action goal moved as ROS 2's state machine forbids
     ├── RegistrationRejected                -    -     the core refused a node's session
     ├── EndpointPortBusy                    -    -     a protocol endpoint's port is taken at start-up
     ├── Refused (rosbridge), _Refused (Foxglove)  a protocol op that cannot be done: a status reply

@@ -6,7 +6,7 @@
 The script asks ``skydeck completion complete`` for the candidates of the word being typed,
 giving it the words so far in ``SKYDECK_COMP_WORDS`` (one a line) and the word's index in
 ``SKYDECK_COMP_CWORD``. Candidates come from the command line's own parser (verbs and flags)
-and, for names, from the running system (``/api/graph``: topics, services, nodes) or the type
+and, for names, from the running system (``/api/graph``: topics, services, actions, nodes) or the type
 catalogue; an argument that is a file answers ``__files__``, and the shell lists files; after a
 launch file, its launch arguments as ``name:=`` (no space after them: the value follows).
 """
@@ -28,6 +28,7 @@ _KINDS = {
     "topic": "topics",
     "topics": "topics",
     "service": "services",
+    "action": "actions",
     "node": "nodes",
     "type": "types",
     "file": "files",
@@ -180,7 +181,7 @@ def _positional_values(parser: argparse.ArgumentParser, path: list[str], given: 
     if kind == "types":
         from shared_models import interface_names
 
-        wanted = "srv" if path[:1] == ["service"] else "msg" if path[:1] == ["topic"] else None
+        wanted = {"service": "srv", "topic": "msg", "action": "action"}.get(path[0] if path else "")
         package = typed.split("/", 1)[0] if "/" in typed else None  # only its package is loaded
         return [name for name in interface_names(wanted, package=package) if name.startswith(typed)]
     if kind is not None:
@@ -210,4 +211,8 @@ def _live(kind: str, typed: str) -> list[str]:
         graph = httpx.get(core_url() + "/api/graph", headers=auth_headers(), timeout=_GRAPH_TIMEOUT_S).json()
     except (httpx.HTTPError, ValueError):
         return []
+    if kind == "actions":
+        from services.runtime.actions.names import actions_in_graph
+
+        return [name for name in actions_in_graph(graph) if name.startswith(typed)]
     return sorted(item["name"] for item in graph.get(kind, []) if item["name"].startswith(typed))

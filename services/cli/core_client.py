@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from services.cli.errors import CliError
@@ -10,7 +11,7 @@ from services.cli.settings import cli_settings
 if TYPE_CHECKING:
     import httpx
 
-__all__ = ["auth_headers", "core_url", "error_detail", "get_json", "post_json", "ws_url"]
+__all__ = ["auth_headers", "core_url", "error_detail", "get_json", "node_settings", "post_json", "unknown_name", "ws_url"]
 
 
 def core_url() -> str:
@@ -32,6 +33,14 @@ def ws_url(path: str, **query: Any) -> str:
     return f"{'wss' if scheme == 'https' else 'ws'}://{rest}{path}" + (f"?{params}" if params else "")
 
 
+def node_settings() -> Any:
+    """The settings of a node the CLI runs itself (a recorder, an action client): the
+    process's, on a port of its own choosing."""
+    from services.runtime.settings import node_settings as process_node_settings
+
+    return process_node_settings().model_copy(update={"port": 0})
+
+
 def _unreachable(error: Exception) -> CliError:
     return CliError(
         f"cannot reach the core at {core_url()} ({type(error).__name__}): is it running? "
@@ -39,8 +48,9 @@ def _unreachable(error: Exception) -> CliError:
     )
 
 
-def get_json(path: str, *, missing: str | None = None) -> Any:
-    """GET ``path`` on the core; a 404 raises CliError(``missing``) when given."""
+def get_json(path: str, *, missing: str | Callable[[], str] | None = None) -> Any:
+    """GET ``path`` on the core; a 404 raises CliError(``missing``) when given (a callable is
+    asked only then: what to say may take another request, as the nearest names do)."""
     import httpx  # here, not at the top: `skydeck launch` runs all session without it
 
     try:
@@ -48,7 +58,7 @@ def get_json(path: str, *, missing: str | None = None) -> Any:
     except httpx.HTTPError as error:
         raise _unreachable(error) from None
     if reply.status_code == 404 and missing is not None:
-        raise CliError(missing)
+        raise CliError(missing if isinstance(missing, str) else missing())
     if reply.status_code != 200:
         raise CliError(f"the core answered {reply.status_code} for {path}: {error_detail(reply)}")
     return reply.json()
@@ -64,6 +74,14 @@ def post_json(path: str, body: Any, *, timeout_s: float) -> httpx.Response:
         raise CliError(f"no answer from {path} within {timeout_s:g} s (--timeout to wait longer)") from None
     except httpx.HTTPError as error:
         raise _unreachable(error) from None
+
+
+def unknown_name(kind: str, name: str) -> Callable[[], str]:
+    """``get_json``'s ``missing`` for a topic, service or node the system does not have: the one
+    line, with the nearest names it has (``unknown topic /x (did you mean /y?): see ...``)."""
+    from services.cli.suggestions import graph_names, unknown
+
+    return lambda: unknown(kind, name, graph_names(get_json("/api/graph"), kind + "s"), listing=f"skydeck {kind} list")
 
 
 def error_detail(reply: httpx.Response) -> str:

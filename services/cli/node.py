@@ -8,7 +8,7 @@ import signal
 import time
 
 from services.cli.arguments import node_name, positive_float, positive_int
-from services.cli.core_client import auth_headers, error_detail, get_json, post_json
+from services.cli.core_client import auth_headers, error_detail, get_json, post_json, unknown_name
 from services.cli.errors import CliError
 from services.cli.formatting import system_name
 
@@ -43,7 +43,7 @@ def _list(args: argparse.Namespace) -> int:
 
 def _info(args: argparse.Namespace) -> int:
     name = node_name(args.node)
-    node = get_json(f"/api/nodes{name}", missing=f"unknown node {name}: see `skydeck node list`")
+    node = _lookup(name)
     graph = get_json("/api/graph")
     types = {t["name"]: t["type"] for t in graph["topics"]}
     types.update({s["name"]: s["type"] for s in graph["services"]})
@@ -63,7 +63,7 @@ def _info(args: argparse.Namespace) -> int:
 
 
 def _lookup(name: str) -> dict:  # type: ignore[type-arg]
-    return get_json(f"/api/nodes{name}", missing=f"unknown node {name}: see `skydeck node list`")  # type: ignore[no-any-return]
+    return get_json(f"/api/nodes{name}", missing=unknown_name("node", name))  # type: ignore[no-any-return]
 
 
 def _ping(args: argparse.Namespace) -> int:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from services.cli.arguments import known_type, ros_name
-from services.cli.core_client import error_detail, get_json, post_json
+from services.cli.core_client import error_detail, get_json, post_json, unknown_name
 from services.cli.errors import CliError
 from services.cli.formatting import parse_data, to_yaml
 
@@ -16,8 +16,14 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     service = subparsers.add_parser("service", help="list, inspect and call services")
     verbs = service.add_subparsers(dest="verb", required=True, metavar="VERB")
 
-    p = verbs.add_parser("list", help="list the services of the running system")
+    p = verbs.add_parser(
+        "list",
+        help="list the services of the running system: the world's commands first, then parameter services",
+    )
     p.add_argument("-t", "--show-types", action="store_true", help="show each service's type")
+    p.add_argument(
+        "-a", "--all", action="store_true", help="also Skydeck's own services (rosapi's, the launch's), listed last"
+    )
     p.set_defaults(func=_list)
 
     p = verbs.add_parser("info", help="node, URL and type of a service")
@@ -40,12 +46,20 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
 
 
 def _lookup(name: str) -> dict[str, str]:
-    return get_json(f"/api/services{name}", missing=f"unknown service {name}: see `skydeck service list`")  # type: ignore[no-any-return]
+    return get_json(f"/api/services{name}", missing=unknown_name("service", name))  # type: ignore[no-any-return]
 
 
 def _list(args: argparse.Namespace) -> int:
-    for service in get_json("/api/graph")["services"]:
-        print(service["name"] + (f" [{service['type']}]" if args.show_types else ""))
+    from services.runtime.service_groups import ServiceGroup, service_group
+
+    # The world's commands lead; the nodes' parameter services follow, as `ros2 service list`
+    # lists them too; Skydeck's own (rosapi for rosbridge clients, the launch's) only with --all,
+    # as ros2 lists hidden services only when asked.
+    grouped = sorted((service_group(s["name"], s["node"]), s["name"], s["type"]) for s in get_json("/api/graph")["services"])
+    for group, name, type_name in grouped:
+        if group is ServiceGroup.SYSTEM and not args.all:
+            continue
+        print(name + (f" [{type_name}]" if args.show_types else ""))
     return 0
 
 
@@ -75,6 +89,8 @@ def _find(args: argparse.Namespace) -> int:
 def _call(args: argparse.Namespace) -> int:
     name = ros_name(args.service)
     reply = post_json(name, parse_data(args.data), timeout_s=args.timeout)
+    if reply.status_code == 404:  # no such service (or topic): the nearest ones it has
+        raise CliError(unknown_name("service", name)())
     if reply.status_code != 200:
         raise CliError(f"{name}: {error_detail(reply)} (HTTP {reply.status_code})")
     print(to_yaml(reply.json()))

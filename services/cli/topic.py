@@ -11,10 +11,10 @@ from websockets.asyncio.client import connect
 from websockets.exceptions import ConnectionClosed, InvalidHandshake
 
 from services.cli.arguments import known_type, positive_float, positive_int, ros_name
-from services.cli.core_client import auth_headers, core_url, get_json, ws_url
+from services.cli.core_client import auth_headers, core_url, get_json, unknown_name, ws_url
 from services.cli.errors import CliError
-from services.cli.formatting import message_view, parse_data, system_name, to_csv, to_yaml
-from services.cli.streams import frames, warn_if_unpublished
+from services.cli.formatting import message_from, message_view, system_name, to_csv, to_yaml
+from services.cli.streams import check_topic, frames
 from services.cli.topic_stats import add_stats_parsers
 from shared_models.close_codes import Close
 
@@ -88,7 +88,7 @@ def _list(args: argparse.Namespace) -> int:
 
 def _info(args: argparse.Namespace) -> int:
     name = ros_name(args.topic)
-    topic = get_json(f"/api/topics{name}", missing=f"unknown topic {name}: see `skydeck topic list`")
+    topic = get_json(f"/api/topics{name}", missing=unknown_name("topic", name))
     graph = get_json("/api/graph")
     urls = {node["name"]: node["url"] for node in graph["nodes"]}
     print(f"Type: {topic['type']}")
@@ -105,7 +105,7 @@ def _info(args: argparse.Namespace) -> int:
 
 def _type(args: argparse.Namespace) -> int:
     name = ros_name(args.topic)
-    topic = get_json(f"/api/topics{name}", missing=f"unknown topic {name}: see `skydeck topic list`")
+    topic = get_json(f"/api/topics{name}", missing=unknown_name("topic", name))
     print(topic["type"])
     return 0
 
@@ -124,8 +124,10 @@ def _find(args: argparse.Namespace) -> int:
 
 def _echo(args: argparse.Namespace) -> int:
     name = ros_name(args.topic)
-    warn_if_unpublished(name)
     limit = 1 if args.once else args.count
+    # A bounded echo (a script's "give me a message") fails on a name the system lacks; a stream,
+    # or one given --timeout, waits for a publisher to come, as rostopic and ros2 topic wait.
+    check_topic(name, wait=limit is None or args.timeout is not None)
     show = message_view(field=args.field, no_arr=args.no_arr)
 
     async def run() -> None:
@@ -155,19 +157,13 @@ def _echo(args: argparse.Namespace) -> int:
 
 def _pub(args: argparse.Namespace) -> int:
     # The message types and the validation, here and not at the top: see cli/interface.py.
-    from pydantic import ValidationError
-
-    from services.runtime.edge.frames import describe_validation_error
     from shared_models import Message
 
     name = ros_name(args.topic)
     msg_type = known_type(args.type)
     if not issubclass(msg_type, Message):
         raise CliError(f"{args.type} is a service type: use `skydeck service call`")
-    try:
-        msg = msg_type.model_validate(parse_data(args.data))
-    except ValidationError as error:
-        raise CliError(describe_validation_error(msg_type.__ros_type__, error)) from None
+    msg = message_from(args.data, msg_type)
     topics = {t["name"]: t for t in get_json("/api/graph")["topics"]}
     if name in topics and topics[name]["type"] != msg_type.__ros_type__:
         raise CliError(f"{name} is {topics[name]['type']}, not {msg_type.__ros_type__}")

@@ -34,6 +34,8 @@ from services.core.parameter_server import router as parameter_server_router
 from services.core.recordings import Recordings
 from services.core.recordings import router as recordings_router
 from services.core.registry import Registry
+from services.core.rosout_log import RosoutLog
+from services.core.rosout_log import router as rosout_router
 from services.core.service_calls import ServiceCalls
 from services.core.sessions import serve_session
 from services.core.settings import CoreSettings
@@ -96,6 +98,8 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
         http = HttpClient()
         core_node.start()
+        app.state.rosout = RosoutLog(core_node)
+        app.state.rosout.start()
         guests = Guests(registry, core_node.participant.url)
         calls = ServiceCalls(registry, guests, settings, http)
         gateway = Gateway(registry, core_node, settings, http, calls)
@@ -109,6 +113,7 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
         finally:
             await servers.stop()
             app.state.recordings.close()
+            app.state.rosout.stop()
             core_node.stop()
             await http.aclose()
 
@@ -135,6 +140,7 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
     app.include_router(api_router)
     app.include_router(recordings_router)
     app.include_router(parameter_server_router)
+    app.include_router(rosout_router)
 
     @app.get("/health", tags=["core"])
     async def health() -> dict[str, Any]:

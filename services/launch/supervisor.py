@@ -3,8 +3,11 @@
     spec = load_launch_file(default_launch_file())
     exit_code = asyncio.run(Supervisor(spec, LaunchOptions(base_port=9000)).run())
 
-Nodes start one at a time in launch order, the core first; each must answer
-``GET /health`` with 200 before the next starts. Every child runs in its own session (its own
+Every node starts at once, the core with them, as roslaunch starts its nodes (each waits for what
+it needs: the core, a service, a topic; a node waits for a core starting beside it without
+saying so); the launch is up when each answers ``GET /health`` with 200, and their ready lines
+come in launch order. A launch with ROS 1 parameters (a roslaunch file's ``<param>``) starts its
+core first and sets them on the core's parameter server before the other nodes start. Every child runs in its own session (its own
 process group), so stopping a node kills whatever it started too, and a Ctrl-C in the terminal
 reaches only the supervisor, which then stops the nodes in reverse order: SIGTERM to the group,
 up to ``stop_timeout_s`` to exit, then SIGKILL. Children's output lines are forwarded with a
@@ -22,12 +25,13 @@ import signal
 import sys
 import time
 from collections import deque
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, TextIO
 
 from services.launch.child_process import ChildProcess, Health, describe_exit, signal_group, spawn
 from services.launch.errors import LaunchError
+from services.launch.next_steps import next_steps
 from services.launch.plan import LaunchOptions, NodePlan, default_command, plan_launch
 from services.launch.plan import core_url as launch_core_url
 from services.launch.settings import LaunchSettings
@@ -159,7 +163,8 @@ class Supervisor:
     # -- public ---------------------------------------------------------------------------------
 
     async def start(self) -> None:
-        """Start every node in order and wait until each is ready; respawning starts now.
+        """Start every node (the core first, if there are parameters to set on it) and wait until
+        each is ready; respawning starts now.
 
         Raises ``LaunchError`` (after stopping what did start) if a port is taken or a node
         does not become ready in time on its first start. Returns early if a stop is requested.
@@ -173,18 +178,17 @@ class Supervisor:
                 self._check_ports_free()
                 self._http = HttpClient()
                 self._announce()
-                parameters_set = False
-                for child in self._children.values():
+                children = list(self._children.values())
+                if self._parameters:  # roslaunch's <param>s: on the core's server before any node starts
+                    for child in (child for child in children if child.plan.is_core):
+                        if self._stopping:
+                            return
+                        await self._start_first(child)
                     if self._stopping:
                         return
-                    if not child.plan.is_core and not parameters_set:
-                        await self._set_parameters()
-                        parameters_set = True
-                    await self._start_first(child)
-                    if child.plan.is_core and self._control_wanted:
-                        await self._start_control()
-                if not parameters_set:
                     await self._set_parameters()
+                    children = [child for child in children if not child.plan.is_core]
+                await self._start_together(children)
             finally:
                 self._start_idle.set()
         except BaseException:
@@ -192,6 +196,9 @@ class Supervisor:
             raise
         if not self._stopping:
             self._say(f"all {len(self._children)} nodes up; Ctrl-C stops them")
+            if any(plan.is_core for plan in self.plans):
+                for line in next_steps(self.core_url):
+                    self._say(line)
 
     async def stop(self) -> None:
         """Stop every node, last started first, and their process groups; safe to call twice."""
@@ -320,9 +327,46 @@ class Supervisor:
         self._say(f"set {count} parameter{'s' if count != 1 else ''} on the core's parameter server")
 
     async def _start_first(self, child: _Child) -> None:
-        plan = child.plan
         await self._spawn(child)
-        outcome = await self._wait_healthy(child)
+        await self._settle_first(child, await self._wait_healthy(child))
+
+    async def _start_together(self, children: list[_Child]) -> None:
+        """Start ``children`` at once and wait until each is ready (on two cores the launch is up
+        in about half the time one after the other takes: a node's start is mostly its imports).
+        A node started beside the core waits for it quietly while it starts. A node is ready (and
+        watched) as soon as it answers; its ready line waits for those of the nodes before it, so
+        they read in launch order. The launch's own node starts last: its imports would take CPU
+        from the nodes starting (`skydeck node kill` needs it only once they are up)."""
+        core = next((child.plan for child in children if child.plan.is_core), None)
+        beside_core = {} if core is None else {"SKYDECK_CORE_START_GRACE_S": f"{core.ready_timeout_s:g}"}
+        for child in children:
+            if self._stopping:
+                return
+            await self._spawn(child, {} if child.plan.is_core else beside_core)
+        lines: list[str | None] = [None] * len(children)
+        said = 0
+
+        async def settle(index: int, child: _Child) -> Health:
+            nonlocal said
+            outcome = await self._wait_healthy(child)
+            if outcome is Health.READY:
+                lines[index] = self._mark_ready(child)
+                child.watch = asyncio.create_task(self._watch(child), name=f"launch-watch-{child.plan.name}")
+                while said < len(lines) and (line := lines[said]) is not None:
+                    self._say(line)
+                    said += 1
+            return outcome
+
+        outcomes = await asyncio.gather(*(settle(index, child) for index, child in enumerate(children)))
+        for child, outcome in zip(children, outcomes, strict=True):  # the first failure, in launch order
+            if outcome is not Health.READY:
+                await self._settle_first(child, outcome)
+        if self._control_wanted and any(plan.is_core for plan in self.plans) and not self._stopping:
+            await self._start_control()
+
+    async def _settle_first(self, child: _Child, outcome: Health) -> None:
+        """A first start's outcome: ready (watched from now on), or a LaunchError saying why not."""
+        plan = child.plan
         if outcome is Health.READY:
             self._ready(child)
             child.watch = asyncio.create_task(self._watch(child), name=f"launch-watch-{plan.name}")
@@ -343,10 +387,16 @@ class Supervisor:
                 stderr_tail=tuple(child.stderr_tail),
             )
 
-    async def _spawn(self, child: _Child) -> None:
+    async def _spawn(self, child: _Child, extra_env: Mapping[str, str] | None = None) -> None:
         plan = child.plan
         argv = [str(part) for part in self._command_for(plan)]
-        env = {**self._settings.environment, "SKYDECK_CORE_URL": self.core_url, "PYTHONUNBUFFERED": "1", **plan.env}
+        env = {
+            **self._settings.environment,
+            "SKYDECK_CORE_URL": self.core_url,
+            "PYTHONUNBUFFERED": "1",
+            **(extra_env or {}),
+            **plan.env,
+        }
         prefix = f"[{plan.name}] "
 
         def on_line(text: str, is_stderr: bool) -> None:
@@ -372,13 +422,16 @@ class Supervisor:
         )
 
     def _ready(self, child: _Child) -> None:
+        self._say(self._mark_ready(child))
+
+    def _mark_ready(self, child: _Child) -> str:
+        """The node is ready now (waiters are told); the line that says so."""
         child.state = NodeState.READY
         child.ready_count += 1
-        pid = child.pid
         took = time.monotonic() - child.started_at
         again = f", restart {child.starts - 1}" if child.starts > 1 else ""
-        self._say(f"{child.plan.name} ready at {child.plan.url} (pid {pid}, {took:.1f} s{again})")
         self._notify()
+        return f"{child.plan.name} ready at {child.plan.url} (pid {child.pid}, {took:.1f} s{again})"
 
     # -- respawning ---------------------------------------------------------------------------
 

@@ -48,6 +48,7 @@ __all__ = ["ADAPTED", "FACADES", "RosImportFinder", "message_view", "package_nam
 
 # A ROS Python package's name -> the façade that imitates it.
 FACADES = {
+    "actionlib": "services.ros.actionlib",  # ROS 1's (its messages, actionlib.msg, are a package's)
     "rclpy": "services.ros.rclpy",
     "rospy": "services.ros.rospy",
     "cv_bridge": "services.ros.cv_bridge",
@@ -63,7 +64,6 @@ _KIND_WORDS = {"msg": "messages", "srv": "services", "action": "actions"}
 # ROS Python packages a course meets that are not message packages and that Skydeck lacks.
 _NOT_PROVIDED = frozenset(
     {
-        "actionlib",
         "ament_index_python",
         "image_geometry",
         "image_transport",

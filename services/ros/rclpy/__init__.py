@@ -117,6 +117,10 @@ def spin_until_future_complete(
 
 
 def __getattr__(name: str) -> Any:
-    if name in ("action", "lifecycle", "wait_for_message", "type_support", "experimental"):
+    if name == "action":  # a subpackage: imported on first use, as `import rclpy.action` does
+        import importlib
+
+        return importlib.import_module("services.ros.rclpy.action")
+    if name in ("lifecycle", "wait_for_message", "type_support", "experimental"):
         raise NotProvidedError(not_provided(f"rclpy.{name}"))
     raise AttributeError(f"module 'rclpy' has no attribute {name!r}")

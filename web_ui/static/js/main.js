@@ -1,5 +1,6 @@
 // Wires the dashboard together and exposes a read-only debug hook on `window.skydeck`.
 
+import { ActionsPanel } from "./actions.js";
 import { socketStates, updatePublished } from "./api.js";
 import { initTokenButton } from "./auth.js";
 import { CameraView } from "./camera.js";
@@ -105,6 +106,7 @@ const layersPanel = new LayersPanel({
   list: $("layer-list"),
 });
 const parameters = new ParametersPanel({ node: $("param-node"), table: $("param-list"), result: $("param-result"), refresh: $("param-refresh") });
+const actions = new ActionsPanel({ table: $("action-list"), empty: $("action-empty") });
 
 graph.addEventListener("update", () => {
   commands.updateGraph(graph.graph);
@@ -116,6 +118,7 @@ graph.addEventListener("update", () => {
   inspector.updateGraph(graph.graph);
   layersPanel.updateGraph(graph.graph);
   parameters.updateGraph(graph.graph);
+  actions.updateGraph(graph.graph);
   view3d.updateGraph(graph.graph);
   windows.updateGraph(graph.graph);
 });
@@ -132,6 +135,7 @@ window.addEventListener("keydown", (event) => {
 tabs.addEventListener("change", () => {
   if (tabs.current === "graph" && graph.graph) diagram.render(graph.graph);
   parameters.setVisible(tabs.current === "parameters");
+  actions.setVisible(tabs.current === "actions");
 });
 
 const teleop = new Teleop({
@@ -273,6 +277,10 @@ window.skydeck = Object.freeze({
   get parameters() {
     return { node: parameters.node, rows: copy(parameters.rows), last: copy(parameters.last) };
   },
+  /** The Actions tab's rows (while it is shown): [{action, type, goal, status, feedback}]. */
+  get actions() {
+    return actions.snapshot();
+  },
   get recorder() {
     return { recording: recorder.recording, current: copy(recorder.current), files: copy(recorder.files), error: recorder.error };
   },
@@ -295,9 +303,11 @@ function renderLegendLayers() {
   const box = $("legend-layers");
   box.replaceChildren();
   for (const layer of layers.list()) {
+    const item = document.createElement("span");
     const swatch = document.createElement("i");
     swatch.style.background = layer.color;
-    box.append(swatch, document.createTextNode(layer.topic));
+    item.append(swatch, document.createTextNode(layer.topic));
+    box.append(item);
   }
 }
 layers.addEventListener("change", renderLegendLayers);
