@@ -19,7 +19,9 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.add_argument(
         "file",
         nargs="?",
-        help="a YAML launch file, a roslaunch XML file (.launch), or a shipped one by name: "
+        help="a YAML launch file, a roslaunch XML file (.launch), a ROS 2 launch file (.launch.py, "
+        "ROS 2 XML or YAML; `skydeck launch PACKAGE FILE` finds it in a workspace package, as ros2 launch), "
+        "or a shipped one by name: "
         + ", ".join(f"{entry.launch_file} (the {name} world)" for name, entry in WORLDS.items())
         + f"; default {default_world().launch_file}",
     )
@@ -27,7 +29,8 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
         "launch_args",
         nargs="*",
         metavar="NAME:=VALUE",
-        help="the launch file's arguments (a YAML file's `arguments:`, a roslaunch file's <arg>s)",
+        help="the launch file's arguments (a YAML file's `arguments:`, a roslaunch file's <arg>s, "
+        "a ROS 2 file's DeclareLaunchArgument)",
     )
     p.add_argument(
         "--show-args", action="store_true", help="list the arguments the launch file takes, with defaults, and exit"
@@ -53,6 +56,7 @@ def _launch(args: argparse.Namespace) -> int:
         DEFAULT_BASE_PORT,
         LaunchOptions,
         launch_arguments,
+        package_launch_file,
         run_launch,
         show_arguments,
     )
@@ -62,6 +66,9 @@ def _launch(args: argparse.Namespace) -> int:
     if args.file is not None and ":=" in args.file:  # `skydeck launch name:=value`: the default file's
         args.launch_args.insert(0, args.file)
         args.file = None
+    if args.file is not None and args.launch_args and ":=" not in args.launch_args[0]:
+        # `skydeck launch PACKAGE FILE` (ros2 launch): the file in the workspace package
+        args.file = str(package_launch_file(args.file, args.launch_args.pop(0)))
     if args.show_args:
         print(show_arguments(launch_arguments(args.file)))
         return 0
