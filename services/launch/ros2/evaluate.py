@@ -12,6 +12,7 @@ from typing import Any
 
 import yaml
 
+from services.builtin_nodes import BUILTIN_NODES
 from services.launch.arguments import LaunchArgument
 from services.launch.ros2.actions import (
     Action,
@@ -121,6 +122,8 @@ def _namespace(outer: str, namespace: str, place: Place) -> str:
 def _node(node: Node, context: Context) -> LaunchedNode:
     package = perform(node.package, context)
     executable = perform(node.executable, context)
+    if package == BUILTIN_PACKAGE and executable not in BUILTIN_NODES:
+        raise node.place.error(f"Skydeck has no built-in node {executable!r}; its nodes: {', '.join(BUILTIN_NODES)}")
     if package != BUILTIN_PACKAGE and not context.listing:
         _check_executable(package, executable, context, node.place)
     namespace = context.namespace

@@ -29,6 +29,7 @@ Kind = Literal["python", "xml", "yaml"]
 _ROS2_XML = re.compile(
     r"<node\b[^>]*\sexec\s*=|\$\((var|find-pkg-share|find-pkg-prefix|eval)\s|<let\b|<push[-_]ros[-_]namespace\b"
 )
+_ROS2_YAML = re.compile(r"^launch:", re.MULTILINE)
 _ROS1_XML = re.compile(r"\$\((arg|find)\s|<rosparam\b|<node\b[^>]*\stype\s*=")
 
 
@@ -45,10 +46,11 @@ def ros2_kind(path: Path) -> Kind | None:
             return None
         return "xml" if name.endswith(".launch.xml") else None
     if name.endswith((".yaml", ".yml")):
+        text = _text(path)
         try:
-            data = yaml.safe_load(_text(path))
-        except yaml.YAMLError:
-            return None  # Skydeck's reader says where the syntax is wrong
+            data = yaml.safe_load(text)
+        except yaml.YAMLError:  # the reader of its kind says where the syntax is wrong
+            return "yaml" if _ROS2_YAML.search(text) else None
         return "yaml" if isinstance(data, dict) and "launch" in data and "nodes" not in data else None
     return None
 

@@ -162,7 +162,7 @@ def _node(values: dict[str, Any], element: Element, path: Path, place: Place) ->
             remappings.append((given["from"], given["to"]))
         else:
             given = _attributes(child, _Tag(("name", "value")), where)
-            env[given["name"]] = given["value"]
+            env[_plain_text(given["name"], where)] = given["value"]
     node = Node(
         package=values["pkg"], executable=values["exec"], name=values.get("name"), namespace=values.get("namespace"),
         parameters=parameters, remappings=remappings, additional_env=env,
@@ -178,7 +178,25 @@ def _words(raw: str, value: Any) -> list[Any]:
     """``args="a b $(var c)"``: one argument per word (a word's substitutions stay in it)."""
     if value is None:
         return []
-    return [_substitutions(word, value[0].place) for word in raw.split()]
+    return [_substitutions(word, value[0].place) for word in _split(raw)]
+
+
+def _split(text: str) -> list[str]:
+    """Words split at spaces outside ``$(...)``."""
+    words: list[str] = []
+    word, depth = "", 0
+    for index, char in enumerate(text):
+        if char == "(" and text[index - 1 : index] == "$":
+            depth += 1
+        elif char == ")" and depth:
+            depth -= 1
+        if char.isspace() and not depth:
+            if word:
+                words.append(word)
+            word = ""
+        else:
+            word += char
+    return [*words, word] if word else words
 
 
 # -- attributes and substitutions --------------------------------------------------------------
@@ -229,7 +247,7 @@ def _one(words: list[str], place: Place) -> Substitution:
 
 def _plain_text(value: list[Substitution], place: Place) -> str:
     if not all(isinstance(part, TextSubstitution) for part in value):
-        raise place.error("a parameter's name or an argument's choice is plain text here (no $(...))")
+        raise place.error("a name or a choice is plain text here (no $(...))")
     return "".join(part.text for part in value if isinstance(part, TextSubstitution))
 
 

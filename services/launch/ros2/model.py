@@ -16,7 +16,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from services.builtin_nodes import BUILTIN_NODES
 from services.launch.arguments import LaunchArgument, literal
 from services.launch.errors import LaunchFileError
 from services.launch.roslaunch import NODE_PORT_OFFSET
@@ -85,11 +84,6 @@ class Ros2Launch:
                 raise LaunchFileError(self.file, f"{node.place}: a node named {name} clashes with skydeck launch's own; rename it")
             taken[name] = node.place
             builtin = node.package == BUILTIN_PACKAGE
-            if builtin and node.executable not in BUILTIN_NODES:
-                raise LaunchFileError(
-                    self.file,
-                    f"{node.place}: Skydeck has no built-in node {node.executable!r}; its nodes: {', '.join(BUILTIN_NODES)}",
-                )
             nodes.append(
                 NodeSpec(
                     name=name,
