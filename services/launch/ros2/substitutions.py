@@ -68,8 +68,12 @@ def perform(value: Any, context: Context) -> str:
         return value
     if isinstance(value, (list, tuple)):
         return "".join(perform(part, context) for part in value)
-    if isinstance(value, (bool, int, float)) or isinstance(value, os.PathLike):
-        return str(value).lower() if isinstance(value, bool) else os.fspath(value) if isinstance(value, os.PathLike) else str(value)
+    if isinstance(value, bool):
+        return str(value).lower()
+    if isinstance(value, os.PathLike):
+        return os.fspath(value)  # type: ignore[no-any-return]
+    if isinstance(value, (int, float)):
+        return str(value)
     raise caller_place().error(f"{type(value).__name__} is not a substitution Skydeck knows (give text or a substitution)")
 
 
