@@ -241,3 +241,15 @@ def test_ours_win_over_a_real_launch_package_and_it_is_put_back(package: Path) -
                 sys.modules.pop(name, None)
             else:
                 sys.modules[name] = module
+
+
+def test_skydecks_own_yaml_names_a_package_executable_too(tmp_path: Path) -> None:
+    from services.launch import load_launch_file
+
+    path = tmp_path / "mine.yaml"
+    path.write_text("nodes:\n  - {name: talker, package: launch_demo, run: talker, port_offset: 2}\n")
+    node = load_launch_file(path, {}).nodes[0]
+    assert (node.package, node.run) == ("launch_demo", "talker")  # not taken as a path
+    path.write_text("nodes:\n  - {name: talker, run: talker, port_offset: 2}\n")
+    with pytest.raises(LaunchFileError, match=r"nodes\[0\].run: 'talker' is neither a built-in"):
+        load_launch_file(path, {})
