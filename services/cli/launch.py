@@ -60,8 +60,8 @@ def _launch(args: argparse.Namespace) -> int:
         launch_arguments,
         package_launch_file,
         run_launch,
-        show_arguments,
         shipped_launch_files,
+        show_arguments,
     )
     from services.launch.settings import LaunchSettings
     from services.protocols.endpoints import ENDPOINTS

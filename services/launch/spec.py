@@ -42,7 +42,7 @@ from pydantic_core import ErrorDetails, PydanticCustomError
 
 from services.builtin_nodes import BUILTIN_NODES
 from services.launch.arguments import LaunchArgument, fill_arguments, substitute
-from services.launch.errors import LaunchError, LaunchFileError
+from services.launch.errors import LaunchError, LaunchFileError, read_launch_text
 from sim_server.worlds import default_world, world_options  # the table only: no PyBullet
 
 __all__ = [
@@ -265,14 +265,7 @@ def load_launch_file(path: str | Path, arguments: Mapping[str, str] | None = Non
         ('core', 'sim', 'perception', 'control', 'ai')
     """
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise LaunchFileError(path, "no such launch file") from None
-    except IsADirectoryError:
-        raise LaunchFileError(path, "is a folder, not a launch file") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise LaunchFileError(path, f"cannot read it: {error}") from None
+    text = read_launch_text(path)
     try:
         data = yaml.safe_load(text)
     except yaml.YAMLError as error:

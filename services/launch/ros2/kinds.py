@@ -16,7 +16,7 @@ from typing import Literal
 
 import yaml
 
-from services.launch.errors import LaunchFileError
+from services.launch.errors import LaunchFileError, read_launch_text
 from services.launch.ros2.actions import LaunchDescription
 from services.launch.ros2.markup import load_markup
 from services.launch.ros2.packages import Workspace
@@ -39,14 +39,14 @@ def ros2_kind(path: Path) -> Kind | None:
     if name.endswith(".py"):
         return "python"
     if name.endswith((".xml", ".launch")):
-        text = _text(path)
+        text = read_launch_text(path)
         if _ROS2_XML.search(text):
             return "xml"
         if _ROS1_XML.search(text):
             return None
         return "xml" if name.endswith(".launch.xml") else None
     if name.endswith((".yaml", ".yml")):
-        text = _text(path)
+        text = read_launch_text(path)
         try:
             data = yaml.safe_load(text)
         except yaml.YAMLError:  # the reader of its kind says where the syntax is wrong
@@ -63,14 +63,3 @@ def load_description(path: Path, workspace: Workspace) -> LaunchDescription:
     if kind is not None:
         return load_markup(path, kind)
     raise LaunchFileError(path, "is not a ROS 2 launch file (.launch.py, ROS 2 XML, or YAML with `launch:`)")
-
-
-def _text(path: Path) -> str:
-    try:
-        return path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise LaunchFileError(path, "no such launch file") from None
-    except IsADirectoryError:
-        raise LaunchFileError(path, "is a folder, not a launch file") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise LaunchFileError(path, f"cannot read it: {error}") from None

@@ -31,6 +31,7 @@ from typing import Any
 
 import yaml
 
+from services.launch.errors import read_launch_text
 from services.launch.ros2.actions import (
     Action,
     DeclareLaunchArgument,
@@ -273,13 +274,11 @@ def _flag(value: list[Substitution] | None, default: bool, place: Place) -> bool
 def _read_yaml(path: Path) -> Element:
     """A ROS 2 YAML launch file as the elements its XML would have (lines kept)."""
     try:
-        document = yaml.compose(path.read_text(encoding="utf-8"))
+        document = yaml.compose(read_launch_text(path))
     except yaml.YAMLError as error:
         mark = getattr(error, "problem_mark", None)
         line = mark.line + 1 if mark is not None else 0
         raise Place(path, line).error(f"YAML syntax error: {getattr(error, 'problem', None) or error}") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise Place(path).error(f"cannot read it: {error}") from None
     if not isinstance(document, yaml.MappingNode):
         raise Place(path).error("expected a mapping with a `launch:` list at the top")
     for key, value in document.value:

@@ -16,16 +16,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from services.launch.arguments import LaunchArgument, literal
-from services.launch.errors import LaunchFileError
-from services.launch.roslaunch import NODE_PORT_OFFSET
-from services.launch.spec import LaunchSpec, NodeSpec
+from services.launch.arguments import LaunchArgument
+from services.launch.roslaunch import LaunchEntry, ros_launch_spec
+from services.launch.spec import LaunchSpec
 
 __all__ = ["BUILTIN_PACKAGE", "LaunchedNode", "Ros2Launch"]
 
 BUILTIN_PACKAGE = "skydeck"
 """``Node(package='skydeck', executable='sim')``: a node that ships with Skydeck."""
-_READY_TIMEOUT_S = 30.0
 
 
 @dataclass(frozen=True)
@@ -76,33 +74,18 @@ class Ros2Launch:
 
     def spec(self, *, start_core: bool) -> LaunchSpec:
         """The launch the supervisor runs: the core first if ``start_core``, then every node."""
-        nodes = [NodeSpec(name="core", run="core", port_offset=0)] if start_core else []
-        taken: dict[str, str] = {}
-        for index, node in enumerate(self.nodes):
+        entries: list[LaunchEntry] = []
+        taken: set[str] = set()
+        for node in self.nodes:
             name = _unique(node.graph_name, taken)
-            if name == "launch" or (start_core and name == "core"):
-                raise LaunchFileError(self.file, f"{node.place}: a node named {name} clashes with skydeck launch's own; rename it")
-            taken[name] = node.place
-            builtin = node.package == BUILTIN_PACKAGE
-            nodes.append(
-                NodeSpec(
-                    name=name,
-                    run=node.executable,
-                    package=None if builtin else node.package,
-                    port_offset=NODE_PORT_OFFSET + index,
-                    # Braces in a ROS 2 launch file are text; in a launch spec, placeholders.
-                    args=tuple(literal(word) for word in node.command_arguments(self.workspaces)),
-                    env={key: literal(value) for key, value in node.env},
-                    respawn=node.respawn,
-                    ready_timeout_s=_READY_TIMEOUT_S,
-                )
-            )
-        if not nodes:
-            raise LaunchFileError(self.file, "the launch file starts no node (and a core already runs)")
-        return LaunchSpec(nodes=tuple(nodes))
+            taken.add(name)
+            package = None if node.package == BUILTIN_PACKAGE else node.package
+            arguments = node.command_arguments(self.workspaces)
+            entries.append(LaunchEntry(name, node.executable, arguments, node.env, node.respawn, node.place, package))
+        return ros_launch_spec(self.file, entries, start_core=start_core)
 
 
-def _unique(name: str, taken: dict[str, str]) -> str:
+def _unique(name: str, taken: set[str]) -> str:
     """``name``, or ``name-2``, ``name-3``... when nodes share it (two unnamed talkers)."""
     if name not in taken:
         return name

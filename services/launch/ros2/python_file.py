@@ -9,7 +9,6 @@ everything is as it was. An error in the file's own code is one line naming its 
 
 from __future__ import annotations
 
-import importlib
 import importlib.abc
 import importlib.machinery
 import sys
@@ -24,6 +23,7 @@ from services.launch.ros2.actions import LaunchDescription
 from services.launch.ros2.api import MODULES
 from services.launch.ros2.packages import Workspace
 from services.launch.ros2.places import Place, not_provided, reading
+from services.ros.aliases import AliasLoader
 
 __all__ = ["load_python"]
 
@@ -65,28 +65,12 @@ def _line_in(error: BaseException, path: Path) -> int:
     return lines[-1] if lines else 0
 
 
-class _AliasLoader(importlib.abc.Loader):
-    """A ROS name loaded as the Skydeck module that stands for it (the same module object)."""
-
-    def __init__(self, target: str) -> None:
-        self.target = target
-        self._own_spec: importlib.machinery.ModuleSpec | None = None
-
-    def create_module(self, spec: importlib.machinery.ModuleSpec) -> types.ModuleType:
-        module = importlib.import_module(self.target)
-        self._own_spec = module.__spec__
-        return module
-
-    def exec_module(self, module: types.ModuleType) -> None:
-        module.__spec__ = self._own_spec  # Python set the alias's while loading
-
-
 class _ApiFinder(importlib.abc.MetaPathFinder):
     def find_spec(
         self, fullname: str, path: Sequence[str] | None = None, target: types.ModuleType | None = None
     ) -> importlib.machinery.ModuleSpec | None:
         if fullname in MODULES:
-            return importlib.machinery.ModuleSpec(fullname, _AliasLoader(_API + MODULES[fullname]), is_package=True)
+            return importlib.machinery.ModuleSpec(fullname, AliasLoader(_API + MODULES[fullname]), is_package=True)
         if fullname.partition(".")[0] in _TOPS:
             raise not_provided(f"the module {fullname}")
         return None
