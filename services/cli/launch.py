@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import re
+from collections.abc import Mapping
 from pathlib import Path
 
 from services.cli.errors import CliError
@@ -69,7 +70,7 @@ def _launch(args: argparse.Namespace) -> int:
     if args.file is not None and ":=" in args.file:  # `skydeck launch name:=value`: the default file's
         args.launch_args.insert(0, args.file)
         args.file = None
-    if _names_a_package(args.file, args.launch_args, shipped_launch_files()):
+    if args.file is not None and _names_a_package(args.file, args.launch_args, shipped_launch_files()):
         # `skydeck launch PACKAGE FILE` (ros2 launch): the file in the workspace package
         args.file = str(package_launch_file(args.file, args.launch_args.pop(0)))
     if args.show_args:
@@ -103,12 +104,11 @@ def _launch(args: argparse.Namespace) -> int:
     return run_launch(args.file, options, launch_args=launch_args, settings=settings, base_port_given=args.base_port is not None)
 
 
-def _names_a_package(file: str | None, launch_args: list[str], shipped: dict[str, object]) -> bool:
+def _names_a_package(file: str, launch_args: list[str], shipped: Mapping[str, object]) -> bool:
     """Whether ``skydeck launch FILE WORD`` is ``ros2 launch``'s ``PACKAGE FILE``: a bare name
     that is no file here and no shipped launch, then a word that is no ``name:=value``."""
     return (
-        file is not None
-        and bool(launch_args)
+        bool(launch_args)
         and ":=" not in launch_args[0]
         and re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", file) is not None
         and file not in shipped
