@@ -36,6 +36,7 @@ from urllib.parse import urlsplit
 
 import httptools
 
+from services.runtime.lockstep.activity import ACTIVITY
 from shared_models.errors import SkydeckError
 
 __all__ = ["HttpClient", "HttpError", "HttpReply", "HttpTimeout", "HttpUnreachable", "Outcome"]
@@ -325,7 +326,8 @@ class HttpClient:
 
         exchange = self.start(method, url, body, timeout_s=timeout_s, headers=headers, on_done=done)
         try:
-            result = await outcome
+            with ACTIVITY.working():  # a lockstep run waits for the reply (services.runtime.lockstep)
+                result = await outcome
         except BaseException:  # cancelled while the request was out
             exchange.abort()
             raise

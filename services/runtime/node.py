@@ -18,6 +18,7 @@ from services.runtime.clock import Clock
 from services.runtime.edge.encoding import Encoding
 from services.runtime.errors import NodeError
 from services.runtime.http_client import HttpClient
+from services.runtime.lockstep import agent as lockstep
 from services.runtime.logger import NodeLogger
 from services.runtime.node_parameters import ParametersMixin
 from services.runtime.parameter import Parameter
@@ -113,6 +114,7 @@ class Node(ParametersMixin):
             on_service=self._app.add_service,
             on_changed=self._changed,
         )
+        self._participant.in_lockstep = bool(self.settings.lockstep_url)
         self._timers: list[Timer] = []
         self._subscriptions: list[Subscription] = []
         self._tasks: set[asyncio.Task[Any]] = set()
@@ -309,6 +311,14 @@ class Node(ParametersMixin):
             self._participant.foreign = list(participants)
             self._changed()
 
+    def lockstep_state(self) -> tuple[bool, list[tuple[str, str, int]], list[tuple[str, str, int]]]:
+        """For a lockstep run (:mod:`services.runtime.lockstep`): whether the node has work now
+        (a message or a due timer waiting for its callback, a callback running, a link
+        connecting), and the messages it sent and received, per topic and node at the other end."""
+        busy = any(not s.idle for s in self._subscriptions) or any(t.busy for t in self._timers)
+        sent, received, connecting = self._participant.lockstep_counts()
+        return busy or connecting, sent, received
+
     def describe(self):  # type: ignore[no-untyped-def]
         """What this node tells the core about itself (a NodeDescription)."""
         return self._participant.describe()
@@ -359,12 +369,15 @@ class Node(ParametersMixin):
             self._spawn(subscription.run(self._logger.logger))
         for timer in self._timers:
             self._spawn(timer.run(self._logger.logger))
+        if self.settings.lockstep_url:
+            lockstep.join(self, self.settings.lockstep_url)
 
     async def stop(self) -> None:
         """Stop serving and end every task of the node."""
         if not self._running:
             return
         self._running = False
+        await lockstep.leave(self)
         self._participant.stop_links()
         for task in list(self._tasks):
             task.cancel()

@@ -112,6 +112,9 @@ class NodeSettings(ProcessSettings):
     core_url: str = DEFAULT_CORE_URL
     use_sim_time: bool = False
     service_timeout_s: float = Field(default=10.0, gt=0)
+    # A lockstep run's coordinator (services.runtime.lockstep): set by `skydeck grade` for the
+    # processes it starts, so that the world waits for their nodes; empty: run free.
+    lockstep_url: str = ""
     # ROS 1's variable for the namespace a rospy program's node starts in (`ROS_NAMESPACE=/robot1`).
     ros_namespace: str = Field(default="", validation_alias="ROS_NAMESPACE")
 

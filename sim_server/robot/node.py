@@ -21,7 +21,7 @@ from functools import partial
 from typing import Any
 
 from services.runtime import NodeSettings, Publisher
-from shared_models.builtin_interfaces import Time, split_seconds
+from shared_models.builtin_interfaces import split_seconds
 from shared_models.geometry_msgs import (
     Point,
     Pose,
@@ -155,7 +155,6 @@ class RobotSimNode(WorldNode[RobotSettings]):
         world = self.world
         sec, nanosec = split_seconds(world.time_s)
         stamp = {"sec": sec, "nanosec": nanosec}
-        self.clock_publisher.publish_built(lambda: Time.model_validate(stamp))
         scanning = steps % SCAN_EVERY_STEPS == 0
         transforms = []
         for robot in self.robots:
