@@ -89,7 +89,9 @@ class WorldNode(Node, Generic[S]):
         self.resets = 0
         self._last_warning: defaultdict[str, float] = defaultdict(lambda: -math.inf)
         self.world_publisher = self.create_publisher(SimWorld, "/simulator/world", 1, latched=True)
-        self.clock_publisher = self.create_publisher(Time, "/clock", 10)
+        # In a lockstep run /clock is latched: a ROS node that waits for its first /clock when it
+        # starts has it at once, though the world steps only once every node is up.
+        self.clock_publisher = self.create_publisher(Time, "/clock", 10, latched=bool(self.settings.lockstep_url))
         self.camera = CameraStream(self, self.sim, self._render_camera, self.header)
         self.create_service(Trigger, "/simulator/reset", self.on_reset)
 
@@ -214,6 +216,7 @@ class WorldNode(Node, Generic[S]):
         """Step in chunks of one publishing period, publish, and keep pace with the wall clock;
         in a lockstep run, step when the run's coordinator says (:meth:`_lockstep_step`)."""
         if self.settings.lockstep_url:
+            self._publish_clock()
             lockstep.set_stepper(self._lockstep_step)
             return
         world = self.world
