@@ -1,0 +1,107 @@
+"""``skydeck grade ASSIGNMENT.yaml FILES...``: run a student's nodes in fresh seeded worlds and
+score what they did (docs/class.md).
+
+    skydeck grade examples/assignments/wall_follower.yaml my_wall_follower.py --student ada
+
+Prints a verdict per criterion (``PASS wall_follower.band_fraction 0.93 >= 0.80``), the
+recordings and the report; writes ``grade.json`` and ``report.html`` to ``--out``. Exit status
+0 when every criterion passes, 1 when one fails, 2 when grading could not be done (a bad
+assignment file, a file that is not a node, a world that would not run).
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import json
+import re
+import sys
+from pathlib import Path
+
+from services.cli.settings import cli_settings
+
+__all__ = ["add_parser"]
+
+EXIT_PASSED, EXIT_FAILED, EXIT_ERROR = 0, 1, 2
+_STUDENT = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,63}$")
+
+
+def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    p = subparsers.add_parser(
+        "grade",
+        help="run a student's nodes in seeded worlds and score them against an assignment",
+        description=(
+            "Runs FILES (rospy/rclpy/SDK node files, or built-in nodes) as `skydeck run` does, in a "
+            "fresh world per seed at full speed, in lockstep (the same files and seed give the same "
+            "score), records each run and scores the assignment's criteria. Exit status: 0 every "
+            "criterion passed, 1 one failed, 2 grading could not be done."
+        ),
+    )
+    p.add_argument("assignment", metavar="ASSIGNMENT.yaml", help="the assignment file (examples/assignments/)")
+    p.add_argument("files", nargs="+", metavar="FILE", help="the student's node files (.py), or built-in node names")
+    p.add_argument("--student", default="student", help="the student's name, for the report and the folder (default: student)")
+    p.add_argument(
+        "--seeds", choices=("visible", "hidden"), default="visible",
+        help="visible: the assignment's own seeds (default); hidden: the instructor's, from SKYDECK_GRADE_SECRET",
+    )  # fmt: skip
+    p.add_argument("--out", type=Path, metavar="DIR", help="where runs and reports go (default: grades/ASSIGNMENT/STUDENT)")
+    p.add_argument("--json", action="store_true", help="print the gradebook's JSON instead of the verdict lines")
+    p.add_argument("--class", dest="whole_class", action="store_true", help="grade every student of a running class (needs `skydeck class`)")
+    p.set_defaults(func=_grade)
+
+
+def _error(message: str) -> int:
+    print(f"skydeck: error: {message}", file=sys.stderr)
+    return EXIT_ERROR
+
+
+def _grade(args: argparse.Namespace) -> int:
+    from services.grading.assignment import AssignmentError, load_assignment
+    from services.grading.grade import GradeError, check_files, grade
+    from services.grading.report_html import render_report
+    from services.grading.verdicts import as_json, verdict_lines
+
+    if args.whole_class:
+        return _error("--class grades every student of a running class: it needs `skydeck class`, which is not here yet")
+    if not _STUDENT.match(args.student):
+        return _error(f"--student {args.student!r}: letters, digits, '_', '.' and '-' only (it names a folder)")
+    try:
+        assignment = load_assignment(Path(args.assignment))
+        check_files(args.files)
+        seeds = assignment.seeds_for(args.seeds, secret=cli_settings().grade_secret)
+    except (AssignmentError, GradeError) as error:
+        return _error(str(error))
+    out_dir: Path = args.out or Path("grades") / assignment.assignment / args.student
+    try:
+        out_dir.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        return _error(f"--out {out_dir}: cannot make the folder: {error.strerror or error}")
+    print(
+        f"grading {', '.join(args.files)} against {assignment.assignment}: {len(seeds)} {args.seeds} "
+        f"seed{'s' if len(seeds) > 1 else ''}, {assignment.duration_s:g} s of sim time each",
+        file=sys.stderr,
+    )
+    try:
+        report = asyncio.run(
+            grade(assignment, args.files, student=args.student, seeds=seeds, seed_kind=args.seeds, out_dir=out_dir)
+        )
+    except GradeError as error:
+        return _error(str(error))
+    html_path = out_dir / "report.html"
+    html_path.write_text(render_report(report, out_dir), encoding="utf-8")
+    record = as_json(report, html=str(html_path))
+    (out_dir / "grade.json").write_text(json.dumps(record, indent=2) + "\n", encoding="utf-8")
+    if args.json:
+        print(json.dumps(record, indent=2))
+    else:
+        for line in verdict_lines(report):
+            print(line)
+        for run in report.runs:
+            print(f"recording (seed {run.seed}): {run.result.bag}")
+            for node in run.student_nodes:
+                if node.exit_code is not None:
+                    print(f"note: {node.label} exited with status {node.exit_code} during seed {run.seed}: see {node.log}")
+            if run.result.lockstep_lost:
+                print(f"note: seed {run.seed} was not kept in lockstep ({run.result.lockstep_reason})")
+        print(f"report: {html_path}")
+    return EXIT_PASSED if report.passed else EXIT_FAILED
