@@ -89,9 +89,7 @@ class WorldNode(Node, Generic[S]):
         self.resets = 0
         self._last_warning: defaultdict[str, float] = defaultdict(lambda: -math.inf)
         self.world_publisher = self.create_publisher(SimWorld, "/simulator/world", 1, latched=True)
-        # In a lockstep run /clock is latched: a ROS node that waits for its first /clock when it
-        # starts has it at once, though the world steps only once every node is up.
-        self.clock_publisher = self.create_publisher(Time, "/clock", 10, latched=bool(self.settings.lockstep_url))
+        self.clock_publisher = self.create_publisher(Time, "/clock", 10)
         self.camera = CameraStream(self, self.sim, self._render_camera, self.header)
         self.create_service(Trigger, "/simulator/reset", self.on_reset)
 
@@ -216,7 +214,6 @@ class WorldNode(Node, Generic[S]):
         """Step in chunks of one publishing period, publish, and keep pace with the wall clock;
         in a lockstep run, step when the run's coordinator says (:meth:`_lockstep_step`)."""
         if self.settings.lockstep_url:
-            self._publish_clock()
             lockstep.set_stepper(self._lockstep_step)
             return
         world = self.world
@@ -245,16 +242,11 @@ class WorldNode(Node, Generic[S]):
                 await asyncio.sleep(0)
 
     def _lockstep_step(self, what: StepWhat) -> float:
-        """One step of a lockstep run: ``advance`` steps a publishing period and publishes the
-        world's topics, ``clock`` then publishes the time, so that every node has the period's
-        sensor messages before its timers fire; ``start`` publishes both, as they are."""
+        """One step of a lockstep run: ``advance`` steps a publishing period, ``start`` does not;
+        both publish (the run's agents move the nodes' clocks once the step's messages are in)."""
         world = self.world
         if what == "advance":
             world.step(self.PUBLISH_EVERY_STEPS - world.steps % self.PUBLISH_EVERY_STEPS)
-            self._publish_tick(world.steps)
-        elif what == "clock":
-            self._publish_clock()
-        else:
-            self._publish_tick(world.steps)
-            self._publish_clock()
+        self._publish_clock()
+        self._publish_tick(world.steps)
         return world.time_s

@@ -4,15 +4,16 @@ connect to it, it steps the simulator and waits, after each step, until the run 
     coordinator = Coordinator()
     url = await coordinator.start()          # SKYDECK_LOCKSTEP_URL for every process of the run
     ...start the simulator and the nodes...
-    await coordinator.wait_for_stepper(timeout_s=30)
-    await coordinator.step("start"); await coordinator.settle()
+    await coordinator.wait_for_processes(count, timeout_s=30)
+    await coordinator.settle(after=await coordinator.step("start"))
     for _ in range(ticks):
-        await coordinator.step("advance"); await coordinator.settle()
-        await coordinator.step("clock"); await coordinator.settle()
+        await coordinator.settle(after=await coordinator.step("advance"))
     await coordinator.stop()
 
 Settled: every process reports it has nothing to do and, for every topic between two nodes of
-the run, the reader has received as many messages as the publisher handed it. Per-channel counts
+the run, the reader has received as many messages as the publisher handed it. The first settle
+after a step tells each process what the step sent its nodes and the new sim time: it moves its
+nodes' clocks once that has arrived and been handled (:mod:`services.runtime.lockstep.agent`). Per-channel counts
 taken once from each process are enough: links are ordered, so a message is either counted at
 both ends or at neither, and a process that has nothing to do stays so until a message reaches
 it. A run that cannot settle (a node that loops, or floods until messages are dropped) is let
@@ -34,7 +35,9 @@ from starlette.routing import WebSocketRoute
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from services.runtime.lockstep.frames import (
+    ChannelCount,
     HelloFrame,
+    NodeCounts,
     ReportFrame,
     SettleFrame,
     StepFrame,
@@ -163,38 +166,62 @@ class Coordinator:
             return False
         return True
 
-    async def reports(self) -> list[ReportFrame]:
-        """One report from every process, each once it has settled (or said it has not)."""
-        asks = [self._ask(p, SettleFrame(id=next(self._ids), max_wait_s=_REPORT_WAIT_S)) for p in list(self.processes)]
+    async def reports(self, after: SteppedFrame | None = None) -> list[ReportFrame]:
+        """One report from every process, each once it has settled (or said it has not);
+        ``after`` a step: each is first told what the step sent its nodes and the new time."""
+        processes = list(self.processes)
+        asks = [self._ask(process, self._settle_frame(process, after)) for process in processes]
         replies = await asyncio.gather(*asks)
-        reports = [reply for reply in replies if isinstance(reply, ReportFrame)]
-        for process, reply in zip(list(self.processes), replies, strict=False):
+        reports = []
+        for process, reply in zip(processes, replies, strict=True):
             if isinstance(reply, ReportFrame):
+                reports.append(reply)
                 process.stepper = process.stepper or reply.stepper
                 process.nodes = [node.name for node in reply.nodes]
         return reports
 
-    async def settle(self, timeout_s: float | None = None) -> bool:
-        """Wait until the run has settled; False (and counted in :attr:`settling`) if it has not
-        within ``timeout_s`` (default: ``settle_timeout_s``)."""
-        deadline = asyncio.get_running_loop().time() + (self.settle_timeout_s if timeout_s is None else timeout_s)
+    def _settle_frame(self, process: _Process, after: SteppedFrame | None) -> SettleFrame:
+        if after is None:
+            return SettleFrame(id=next(self._ids), max_wait_s=_REPORT_WAIT_S)
+        mine = set(process.nodes)
+        expect: dict[str, list[ChannelCount]] = {}
+        for publisher in after.nodes:
+            for channel in publisher.sent:
+                if channel.peer in mine:
+                    expect.setdefault(channel.peer, []).append(
+                        ChannelCount(topic=channel.topic, peer=publisher.name, count=channel.count)
+                    )
+        return SettleFrame(
+            id=next(self._ids),
+            max_wait_s=_REPORT_WAIT_S,
+            clock_s=after.time_s,
+            expect=[NodeCounts(name=name, received=received) for name, received in expect.items()],
+        )
+
+    async def settle(self, after: SteppedFrame | None = None, timeout_s: float | None = None) -> bool:
+        """Wait until the run has settled (``after`` a step: once each process has handled what
+        it sent and the new time); False (and counted in :attr:`settling`) if it has not within
+        ``timeout_s`` (default: ``settle_timeout_s``)."""
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + (self.settle_timeout_s if timeout_s is None else timeout_s)
         while True:
-            reports = await self.reports()
+            reports = await self.reports(after)
+            after = None  # the step's messages and time are handled: from now on, plain settles
             reason = _unsettled(reports)
             if reason is None:
                 return True
-            if asyncio.get_running_loop().time() > deadline:
+            if loop.time() > deadline:
                 self.settling.lost += 1
                 self.settling.last_reason = reason
                 logger.warning("lockstep: the run did not settle: %s", reason)
                 return False
 
-    async def step(self, what: StepWhat) -> float:
-        """Have the simulator do one step; the sim time after it."""
+    async def step(self, what: StepWhat) -> SteppedFrame:
+        """Have the simulator do one step; what it published (and the sim time after it)."""
         reply = await self._ask(self._stepper(), StepFrame(id=next(self._ids), what=what))
         if not isinstance(reply, SteppedFrame):
             raise LockstepError("the simulator left the run (it exited: see its output)")
-        return reply.time_s
+        return reply
 
 
 def _unsettled(reports: list[ReportFrame]) -> str | None:

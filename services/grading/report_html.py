@@ -55,14 +55,20 @@ class _Frame:
         return math.ceil((self.x1 - self.x0) * self.scale), math.ceil((self.y1 - self.y0) * self.scale)
 
 
+def _corners(box: Box) -> list[tuple[float, float]]:
+    c, s = math.cos(box.yaw), math.sin(box.yaw)
+    hx, hy = box.size_x / 2, box.size_y / 2
+    return [(box.x + c * a * hx - s * b * hy, box.y + s * a * hx + c * b * hy) for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+
+
 def _frame(run: SeedRun) -> _Frame:
     tracks = run.tracks
     xs: list[float] = []
     ys: list[float] = []
     for box in tracks.obstacles + tracks.boxes:
-        reach = math.hypot(box.size_x, box.size_y) / 2
-        xs += [box.x - reach, box.x + reach]
-        ys += [box.y - reach, box.y + reach]
+        for x, y in _corners(box):
+            xs.append(x)
+            ys.append(y)
     for pose in tracks.robot + tracks.drone + tracks.people:
         xs.append(pose.x)
         ys.append(pose.y)
@@ -70,13 +76,7 @@ def _frame(run: SeedRun) -> _Frame:
 
 
 def _box(frame: _Frame, box: Box, fill: str) -> str:
-    c, s = math.cos(box.yaw), math.sin(box.yaw)
-    corners = [(-1, -1), (1, -1), (1, 1), (-1, 1)]
-    points = " ".join(
-        "{:.1f},{:.1f}".format(*frame.p(box.x + c * a * box.size_x / 2 - s * b * box.size_y / 2,
-                                        box.y + s * a * box.size_x / 2 + c * b * box.size_y / 2))
-        for a, b in corners
-    )  # fmt: skip
+    points = " ".join("{:.1f},{:.1f}".format(*frame.p(x, y)) for x, y in _corners(box))
     return f'<polygon class="{box.kind}" points="{points}" fill="{fill}" stroke="#6b5236" stroke-width="0.6"/>'
 
 

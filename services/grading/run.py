@@ -16,6 +16,7 @@ the first step then finds every run in the same state.
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import json
 import os
 import re
@@ -87,6 +88,10 @@ class RunResult:
     lockstep_lost: int
     lockstep_reason: str
     nodes: list[NodeOutcome]
+    stepping_wall_s: float = 0.0
+    """Wall time of the steps alone (the rest is starting and stopping processes)."""
+    stepping_cpu_s: dict[str, float] = field(default_factory=dict)
+    """CPU time each process spent during the steps (this process as ``grader``)."""
 
 
 def _argv(*args: object) -> list[str]:
@@ -184,6 +189,15 @@ class _Run:
                 raise RunFailed(f"the run was not ready within {_READY_TIMEOUT_S:g} s: {missing or 'not settled'}")
             await asyncio.sleep(_POLL_S)
 
+    def cpu_seconds(self) -> dict[str, float]:
+        """CPU time so far of each process still running, and of this one (``grader``)."""
+        seconds = {"grader": time.process_time()}
+        for name, process in self.processes.items():
+            if process.returncode is None:
+                with contextlib.suppress(OSError, ValueError):
+                    seconds[name] = process.cpu_seconds()
+        return seconds
+
     def _graph(self) -> dict[str, object]:
         with urllib.request.urlopen(f"{self.core_url}/api/graph", timeout=5.0) as reply:
             graph: dict[str, object] = json.loads(reply.read())
@@ -238,16 +252,20 @@ async def run_world(plan: RunPlan) -> RunResult:
         await run.start()
         await run.wait_ready()
         coordinator = run.coordinator
-        sim_time_s = await coordinator.step("start")
-        await coordinator.settle()
+        stepping_from, cpu_from = time.monotonic(), run.cpu_seconds()
+        stepped = await coordinator.step("start")
+        await coordinator.settle(after=stepped)
+        sim_time_s = stepped.time_s
         while sim_time_s < plan.duration_s - 1e-9:
-            sim_time_s = await coordinator.step("advance")
-            await coordinator.settle()
-            await coordinator.step("clock")
-            await coordinator.settle()
+            stepped = await coordinator.step("advance")
+            await coordinator.settle(after=stepped)
+            sim_time_s = stepped.time_s
             steps += 1
             if steps % 30 == 0:
                 run._check_own_processes()
+        stepping_wall_s = time.monotonic() - stepping_from
+        cpu_to = run.cpu_seconds()
+        stepping_cpu_s = {name: cpu_to[name] - cpu_from[name] for name in cpu_to if name in cpu_from}
         exit_codes = [process.returncode for _, process in run.node_processes]  # before they are stopped
     except (LockstepError, ProcessFailed) as error:
         raise RunFailed(str(error)) from None
@@ -270,4 +288,6 @@ async def run_world(plan: RunPlan) -> RunResult:
         lockstep_lost=run.coordinator.settling.lost,
         lockstep_reason=run.coordinator.settling.last_reason,
         nodes=outcomes,
+        stepping_wall_s=stepping_wall_s,
+        stepping_cpu_s=stepping_cpu_s,
     )

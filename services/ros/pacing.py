@@ -154,6 +154,8 @@ def wait_for_first_clock(clock: RuntimeClock, timeout_s: float = FIRST_CLOCK_WAI
     """On sim time, wait (a moment at most) for the first ``/clock``: ROS time reads zero until
     then, and a program that takes the time at start (a timed leg, a timeout) would otherwise
     measure from zero, a classic stumble with both rospy and rclpy."""
+    if clock.driven:
+        return  # a lockstep run moves the clock once every node is up: it starts at zero
     deadline = time.monotonic() + timeout_s
     while clock.use_sim_time and clock.now().nanoseconds == 0 and time.monotonic() < deadline:
         time.sleep(0.005)

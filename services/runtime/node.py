@@ -42,7 +42,7 @@ from services.runtime.settings import NodeSettings, node_settings, reachable_hos
 from services.runtime.subscription import RawSubscription, Subscription
 from services.runtime.timer import Timer
 from shared_models import Message, ServiceType, resolve_node_name
-from shared_models.builtin_interfaces import Time
+from shared_models.builtin_interfaces import Time, split_seconds
 from shared_models.rcl_interfaces import Log, ParameterDescriptor, ParameterEvent
 
 __all__ = ["Node"]
@@ -100,6 +100,7 @@ class Node(ParametersMixin):
         )
         self._name = self._names.full_node_name
         self._clock = Clock(use_sim_time=self.settings.use_sim_time)
+        self._clock.driven = bool(self.settings.lockstep_url)
         self._app = NodeApp(
             self._name,
             token=self.settings.token,
@@ -204,7 +205,7 @@ class Node(ParametersMixin):
     def _use_sim_time(self, enabled: bool) -> None:
         """Switch the clock (timers follow within a period); /clock is subscribed on first use."""
         self._clock.set_use_sim_time(enabled)
-        if enabled and self._clock_subscription is None:
+        if enabled and self._clock_subscription is None and not self._clock.driven:
             self._clock_subscription = self.create_subscription(Time, _CLOCK, self._clock.set_sim_time, 1)
 
     # -- entities -----------------------------------------------------------------------------
@@ -318,6 +319,13 @@ class Node(ParametersMixin):
         busy = any(not s.idle for s in self._subscriptions) or any(t.busy for t in self._timers)
         sent, received, connecting = self._participant.lockstep_counts()
         return busy or connecting, sent, received
+
+    def lockstep_set_clock(self, time_s: float) -> None:
+        """For a lockstep run: move the node's sim clock to ``time_s`` (its timers fire as on a
+        /clock message); nothing when the node runs on the wall clock."""
+        if self._clock.use_sim_time:
+            sec, nanosec = split_seconds(time_s)
+            self._clock.set_sim_time(Time(sec=sec, nanosec=nanosec))
 
     def describe(self):  # type: ignore[no-untyped-def]
         """What this node tells the core about itself (a NodeDescription)."""

@@ -11,6 +11,10 @@ on sim time that is due or running, a link still connecting), nothing counted in
 over a few turns of the event loop (a task woken by a callback runs within a turn or two; what
 it does shows in the counts). The coordinator adds the rest: every message a node was sent has
 arrived (the counts of both ends agree), so nothing is on its way either.
+
+The nodes' sim clocks are moved by the agent, not by ``/clock`` messages (which arrive on a
+socket of their own, in no order with the sensors'): after a step, once the step's messages
+have arrived and been handled, then the clock, so timers always see the step's sensor data.
 """
 
 from __future__ import annotations
@@ -61,6 +65,10 @@ class LockstepNode(Protocol):
 
     def lockstep_state(self) -> tuple[bool, list[tuple[str, str, int]], list[tuple[str, str, int]]]:
         """(busy, sent per topic and reader, received per topic and publisher)."""
+        ...
+
+    def lockstep_set_clock(self, time_s: float) -> None:
+        """Move the node's sim clock to ``time_s`` (nothing if it runs on the wall clock)."""
         ...
 
 
@@ -115,7 +123,9 @@ class _Agent:
     def _step(self, request_id: int, what: StepWhat) -> SteppedFrame:
         if self.stepper is None:
             raise RuntimeError("lockstep: a step was asked of a process that simulates nothing")
-        return SteppedFrame(id=request_id, time_s=self.stepper(what))
+        time_s = self.stepper(what)
+        _, counts = self._state()
+        return SteppedFrame(id=request_id, time_s=time_s, nodes=_node_counts(counts))
 
     def _state(self) -> tuple[bool, Counts]:
         busy = ACTIVITY.busy()
@@ -129,30 +139,59 @@ class _Agent:
     async def _settle(self, request: SettleFrame) -> ReportFrame:
         loop = asyncio.get_running_loop()
         deadline = loop.time() + request.max_wait_s
+        if request.expect or request.clock_s is not None:
+            wanted = {
+                (node.name, channel.topic, channel.peer): channel.count
+                for node in request.expect
+                for channel in node.received
+            }
+            settled, counts = await self._settled(deadline, lambda counts: _arrived(wanted, counts))
+            if not settled:
+                return self._report(request.id, False, counts)
+            if request.clock_s is not None:
+                for node in self.nodes:
+                    node.lockstep_set_clock(request.clock_s)
+        settled, counts = await self._settled(deadline, lambda _: True)
+        return self._report(request.id, settled, counts)
+
+    async def _settled(self, deadline: float, ready: Callable[[Counts], bool]) -> tuple[bool, Counts]:
+        """Wait until the process is settled and ``ready(counts)``; (False, counts) at ``deadline``."""
+        loop = asyncio.get_running_loop()
         turns = 0
         while True:
             busy, counts = self._state()
-            if not busy:
+            if not busy and ready(counts):
                 for _ in range(_CONFIRM_TURNS):
                     await asyncio.sleep(0)
                 again_busy, again = self._state()
                 if not again_busy and again == counts:
-                    return self._report(request.id, True, counts)
+                    return True, counts
             if loop.time() > deadline:
-                return self._report(request.id, False, counts)
+                return False, counts
             turns += 1
             await asyncio.sleep(0 if turns < _SPIN_TURNS else _NAP_S)
 
     def _report(self, request_id: int, settled: bool, counts: Counts) -> ReportFrame:
-        nodes = [
-            NodeCounts(
-                name=name,
-                sent=[ChannelCount(topic=t, peer=p, count=n) for t, p, n in sent],
-                received=[ChannelCount(topic=t, peer=p, count=n) for t, p, n in received],
-            )
-            for name, sent, received in counts
-        ]
-        return ReportFrame(id=request_id, settled=settled, stepper=self.stepper is not None, nodes=nodes)
+        return ReportFrame(id=request_id, settled=settled, stepper=self.stepper is not None, nodes=_node_counts(counts))
+
+
+def _node_counts(counts: Counts) -> list[NodeCounts]:
+    return [
+        NodeCounts(
+            name=name,
+            sent=[ChannelCount(topic=t, peer=p, count=n) for t, p, n in sent],
+            received=[ChannelCount(topic=t, peer=p, count=n) for t, p, n in received],
+        )
+        for name, sent, received in counts
+    ]
+
+
+def _arrived(wanted: dict[tuple[str, str, str], int], counts: Counts) -> bool:
+    """Whether every (node, topic, publisher) count in ``wanted`` has been received."""
+    if not wanted:
+        return True
+    have = {(name, topic, peer): n for name, _, received in counts for topic, peer, n in received}
+    return all(have.get(key, 0) >= count for key, count in wanted.items())
 
 
 _agent: _Agent | None = None

@@ -4,14 +4,19 @@ A process connects to the coordinator's WebSocket (``SKYDECK_LOCKSTEP_URL``) and
 ``hello``; from then on the coordinator asks and the process answers, one request at a time:
 
     coordinator -> process                      process -> coordinator
-    {"op": "settle", "id": 7, "max_wait_s": 5}  {"op": "report", "id": 7, "settled": true,
-                                                 "nodes": [{"name": "/sim", "sent": [...],
+    {"op": "step", "id": 8, "what": "advance"}  {"op": "stepped", "id": 8, "time_s": 0.0333,
+                                                 "nodes": [{"name": "/sim", "sent": [...]}]}
+    {"op": "settle", "id": 9, "max_wait_s": 2,  {"op": "report", "id": 9, "settled": true,
+     "clock_s": 0.0333, "expect": [...]}         "nodes": [{"name": "/estop", "sent": [...],
                                                             "received": [...]}]}
-    {"op": "step", "id": 8, "what": "advance"}  {"op": "stepped", "id": 8, "time_s": 0.0333}
 
 ``sent`` lists, per topic and reader, the messages a node's endpoint has handed to a reader that
 is in the run; ``received``, per topic and publisher, those its links delivered. Only the
-process that simulates the world (``stepper``) takes ``step``.
+process that simulates the world (``stepper``) takes ``step``. A ``settle`` with ``expect``
+and ``clock_s`` (the first after a step) is answered once the process has received what the
+step published to its nodes (``expect``: their ``received`` counts to reach) and handled it,
+then moved its nodes' sim clocks to ``clock_s`` and handled that too (timers fire): every node
+has the step's sensor messages before its timers see the new time.
 """
 
 from __future__ import annotations
@@ -35,9 +40,8 @@ __all__ = [
     "process_frames",
 ]
 
-StepWhat = Literal["start", "advance", "clock"]
-"""``start``: publish the world as it is (clock included); ``advance``: step one publishing
-period and publish what the world's sensors say (not the clock); ``clock``: publish the clock."""
+StepWhat = Literal["start", "advance"]
+"""``start``: publish the world as it is; ``advance``: step one publishing period and publish."""
 
 
 class _Frame(BaseModel):
@@ -81,6 +85,8 @@ class SteppedFrame(_Frame):
     op: Literal["stepped"] = "stepped"
     id: int
     time_s: float
+    nodes: list[NodeCounts] = []
+    """What the simulator's nodes have sent, once the step is published."""
 
 
 # -- coordinator -> process --------------------------------------------------------------------
@@ -90,6 +96,10 @@ class SettleFrame(_Frame):
     op: Literal["settle"] = "settle"
     id: int
     max_wait_s: float = Field(gt=0, le=3600)
+    clock_s: float | None = Field(default=None, ge=0)
+    """Move the nodes' sim clocks here once what ``expect`` names has arrived and is handled."""
+    expect: list[NodeCounts] = []
+    """Per node of the process: ``received`` counts to wait for first."""
 
 
 class StepFrame(_Frame):
