@@ -43,8 +43,10 @@ class _Frame:
     """World metres to SVG pixels (y up in the world, down on the page), square scale."""
 
     def __init__(self, xs: list[float], ys: list[float]) -> None:
-        self.x0, self.x1 = min(xs) - _MARGIN_M, max(xs) + _MARGIN_M
-        self.y0, self.y1 = min(ys) - _MARGIN_M, max(ys) + _MARGIN_M
+        # Room for the labels of points at the edge: a margin that grows with the world.
+        margin = _MARGIN_M + 0.06 * max(max(xs) - min(xs), max(ys) - min(ys))
+        self.x0, self.x1 = min(xs) - margin, max(xs) + margin
+        self.y0, self.y1 = min(ys) - margin, max(ys) + margin
         self.scale = _MAP_PX / max(self.x1 - self.x0, self.y1 - self.y0, 1e-6)
 
     def p(self, x: float, y: float) -> tuple[float, float]:

@@ -1,12 +1,13 @@
 """One graded run: a private core and simulator on free loopback ports, the recorder, the support
-nodes and the student's nodes, stepped in lockstep for the run's length, then torn down.
+nodes and the student's nodes, stepped in lockstep for the run's length, then torn down. The
+core and the recorder are hosted in this process (:mod:`.hosted`); the rest are processes.
 
     result = await run_world(RunPlan(world="robot", seed=1, options={"obstacles": 0},
                                      duration_s=20.0, nodes=[NodeCommand("wall_follower")],
                                      out_dir=Path("out/seed-1")))
     result.bag            # the recording (MCAP)
 
-Every process is a ``skydeck`` command, started as a user would (``skydeck run FILE``), with
+Every other process is a ``skydeck`` command, started as a user would (``skydeck run FILE``), with
 ``SKYDECK_LOCKSTEP_URL`` pointing at this run's coordinator (:mod:`.coordinator`) and, for the
 nodes, ``--use-sim-time``. Before the first step the run waits until every process has joined,
 every node is linked to every publisher of what it reads, and the recorder records every topic:
@@ -27,17 +28,15 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from services.grading.coordinator import Coordinator, LockstepError
+from services.grading.hosted import NOT_RECORDED, HostedCore, HostedRecorder
 from services.launch.background import BackgroundProcess, ProcessFailed
 from services.runtime.lockstep.frames import ReportFrame
-from services.runtime.ports import free_port_block
 from shared_models.errors import SkydeckError
 
 __all__ = ["NodeCommand", "NodeOutcome", "RunFailed", "RunPlan", "RunResult", "run_world"]
 
 _START_TIMEOUT_S = 60.0  # processes importing PyBullet and the SDK on a loaded 2-core machine
 _READY_TIMEOUT_S = 30.0
-_RECORDER = "recorder"
-_NOT_RECORDED = "camera"  # the simulator renders only while someone reads its camera
 _POLL_S = 0.05
 
 
@@ -114,9 +113,9 @@ class _Run:
     def __init__(self, plan: RunPlan) -> None:
         self.plan = plan
         plan.out_dir.mkdir(parents=True, exist_ok=True)
-        self.core_port = free_port_block(1)
-        self.core_url = f"http://127.0.0.1:{self.core_port}"
+        self.core = HostedCore()
         self.coordinator = Coordinator()
+        self.recorder: HostedRecorder | None = None
         self.processes: dict[str, BackgroundProcess] = {}
         self.node_processes: list[tuple[NodeCommand, BackgroundProcess]] = []
         self.bag = plan.out_dir / "run.mcap"
@@ -125,10 +124,8 @@ class _Run:
     def _env(self, lockstep_url: str) -> dict[str, str]:
         env = {key: value for key, value in os.environ.items() if not key.startswith(("SKYDECK_", "ROS_"))}
         env.update({
-            "SKYDECK_CORE_URL": self.core_url,
+            "SKYDECK_CORE_URL": self.core.url,
             "SKYDECK_LOCKSTEP_URL": lockstep_url,
-            "SKYDECK_ROSBRIDGE_PORT": "0",
-            "SKYDECK_FOXGLOVE_PORT": "0",
             "SKYDECK_STATE_DIR": str(self.plan.out_dir / "state"),
             "PYTHONUNBUFFERED": "1",
         })  # fmt: skip
@@ -141,11 +138,10 @@ class _Run:
         return process
 
     async def start(self) -> None:
-        """Start every process; the nodes wait for the core by themselves, the recorder after it."""
+        """The core and the coordinator here, then the simulator and the nodes, then the recorder."""
+        await self.core.start()
         lockstep_url = await self.coordinator.start()
         env = self._env(lockstep_url)
-        core_env = {k: v for k, v in env.items() if k != "SKYDECK_LOCKSTEP_URL"}
-        core = self._start("core", _argv("core", "--port", self.core_port), core_env)
         plan = self.plan
         options: list[object] = []
         for name, value in plan.options.items():
@@ -164,19 +160,23 @@ class _Run:
                 target, cwd = str(path), path.parent
             argv = _argv("run", target, "--use-sim-time", "--port", 0, *_ros_parameters(command.parameters))
             self.node_processes.append((command, self._start(f"node-{name}", argv, env, cwd)))
-        await asyncio.to_thread(core.wait_healthy, f"{self.core_url}/health", _START_TIMEOUT_S)
-        self._start(_RECORDER, _argv("bag", "record", "-a", "-x", _NOT_RECORDED, "-o", self.bag), env)
+        self.recorder = HostedRecorder(
+            self.bag, self.core.url, lockstep_url, seed=plan.seed,
+            command_line=f"skydeck grade ({plan.world} world, seed {plan.seed})",
+        )  # fmt: skip
+        await self.recorder.start()
 
     async def wait_ready(self) -> None:
         """Until every process joined, links are made and the recorder reads every topic."""
-        expected = 2 + len(self.node_processes)
         deadline = time.monotonic() + _START_TIMEOUT_S
-        while len(self.coordinator.processes) < expected:
+        while True:
             self._check_own_processes()
             started = [p for _, p in self.node_processes if p.returncode is None]
-            expected = 2 + len(started)
+            expected = 2 + len(started)  # this process (the recorder), the simulator, the nodes
+            if len(self.coordinator.processes) >= expected:
+                break
             if time.monotonic() > deadline:
-                raise RunFailed("the run's processes did not all join within " f"{_START_TIMEOUT_S:g} s")
+                raise RunFailed(f"the run's processes did not all join within {_START_TIMEOUT_S:g} s")
             await self.coordinator.wait_for_processes(expected, _POLL_S)
         deadline = time.monotonic() + _READY_TIMEOUT_S
         while True:
@@ -190,7 +190,8 @@ class _Run:
             await asyncio.sleep(_POLL_S)
 
     def cpu_seconds(self) -> dict[str, float]:
-        """CPU time so far of each process still running, and of this one (``grader``)."""
+        """CPU time so far of each process still running, and of this one (``grader``: the
+        coordinator, the core and the recorder)."""
         seconds = {"grader": time.process_time()}
         for name, process in self.processes.items():
             if process.returncode is None:
@@ -199,21 +200,23 @@ class _Run:
         return seconds
 
     def _graph(self) -> dict[str, object]:
-        with urllib.request.urlopen(f"{self.core_url}/api/graph", timeout=5.0) as reply:
+        with urllib.request.urlopen(f"{self.core.url}/api/graph", timeout=5.0) as reply:
             graph: dict[str, object] = json.loads(reply.read())
         return graph
 
     def _check_own_processes(self) -> None:
-        for name in ("core", "sim", _RECORDER):
-            process = self.processes.get(name)
-            if process is not None and process.returncode is not None:
-                raise RunFailed(f"the run's {name} exited ({process.returncode}):\n{process.tail(15)}")
+        process = self.processes.get("sim")
+        if process is not None and process.returncode is not None:
+            raise RunFailed(f"the run's simulator exited ({process.returncode}):\n{process.tail(15)}")
 
     async def stop(self) -> None:
-        """Every process at once: the run has settled, so the recorder holds every message and
-        finishes its file as it stops."""
+        """The recorder first (the run has settled: it holds every message) and its file
+        finished, then every process at once, then the core."""
+        if self.recorder is not None:
+            await self.recorder.stop()
         await asyncio.gather(*(asyncio.to_thread(p.stop) for p in self.processes.values()))
         await self.coordinator.stop()
+        await self.core.stop()
 
 
 def _missing_links(reports: list[ReportFrame], graph: dict[str, object]) -> str | None:
@@ -225,7 +228,7 @@ def _missing_links(reports: list[ReportFrame], graph: dict[str, object]) -> str 
     topics = graph.get("topics")
     for topic in topics if isinstance(topics, list) else []:
         publishers = [p for p in topic.get("publishers", []) if p in names]
-        if not publishers or re.search(_NOT_RECORDED, topic["name"]):
+        if not publishers or re.search(NOT_RECORDED, topic["name"]):
             continue
         subscribers = set(topic.get("subscribers", []))
         for recorder in recorders:
