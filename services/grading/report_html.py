@@ -109,7 +109,7 @@ def _map(report: GradeReport, run: SeedRun) -> str:
     tracks = run.tracks
     frame = _frame(run)
     width, height = frame.size
-    parts = [f'<svg class="map" xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}">']
+    parts = [f'<svg class="map" width="{width}" height="{height}" viewBox="0 0 {width} {height}">']
     for box in tracks.obstacles:
         parts.append(_box(frame, box, "#d9d9de" if box.kind == "wall" else "#b08a5e"))
     for box in tracks.boxes:
