@@ -186,11 +186,9 @@ class Coordinator:
         mine = set(process.nodes)
         expect: dict[str, list[ChannelCount]] = {}
         for publisher in after.nodes:
-            for channel in publisher.sent:
-                if channel.peer in mine:
-                    expect.setdefault(channel.peer, []).append(
-                        ChannelCount(topic=channel.topic, peer=publisher.name, count=channel.count)
-                    )
+            for topic, reader, count in publisher.sent:
+                if reader in mine:
+                    expect.setdefault(reader, []).append((topic, publisher.name, count))
         return SettleFrame(
             id=next(self._ids),
             max_wait_s=_REPORT_WAIT_S,
@@ -235,12 +233,12 @@ def _unsettled(reports: list[ReportFrame]) -> str | None:
     received: Counter[tuple[str, str, str]] = Counter()
     for report in reports:
         for node in report.nodes:
-            for channel in node.sent:
-                if channel.peer in nodes:
-                    sent[(channel.topic, node.name, channel.peer)] += channel.count
-            for channel in node.received:
-                if channel.peer in nodes:
-                    received[(channel.topic, channel.peer, node.name)] += channel.count
+            for topic, reader, count in node.sent:
+                if reader in nodes:
+                    sent[(topic, node.name, reader)] += count
+            for topic, publisher, count in node.received:
+                if publisher in nodes:
+                    received[(topic, publisher, node.name)] += count
     for key in sent.keys() | received.keys():
         if sent[key] != received[key]:
             topic, publisher, reader = key

@@ -222,7 +222,7 @@ class _Run:
 def _missing_links(reports: list[ReportFrame], graph: dict[str, object]) -> str | None:
     """What is not yet linked in the run: a node of the run that reads a topic a node of the run
     publishes without a link to it, or a topic the recorder does not read yet; None when all is."""
-    received = {(node.name, c.topic, c.peer) for report in reports for node in report.nodes for c in node.received}
+    received = {(node.name, topic, peer) for report in reports for node in report.nodes for topic, peer, _ in node.received}
     names = {node.name for report in reports for node in report.nodes}
     recorders = [name for name in names if name.startswith("/bag_record_")]
     topics = graph.get("topics")

@@ -32,7 +32,6 @@ from websockets.exceptions import ConnectionClosed, InvalidHandshake, WebSocketE
 
 from services.runtime.lockstep.activity import ACTIVITY
 from services.runtime.lockstep.frames import (
-    ChannelCount,
     HelloFrame,
     NodeCounts,
     ReportFrame,
@@ -140,11 +139,7 @@ class _Agent:
         loop = asyncio.get_running_loop()
         deadline = loop.time() + request.max_wait_s
         if request.expect or request.clock_s is not None:
-            wanted = {
-                (node.name, channel.topic, channel.peer): channel.count
-                for node in request.expect
-                for channel in node.received
-            }
+            wanted = {(node.name, topic, peer): count for node in request.expect for topic, peer, count in node.received}
             settled, counts = await self._settled(deadline, lambda counts: _arrived(wanted, counts))
             if not settled:
                 return self._report(request.id, False, counts)
@@ -179,8 +174,8 @@ def _node_counts(counts: Counts) -> list[NodeCounts]:
     return [
         NodeCounts(
             name=name,
-            sent=[ChannelCount(topic=t, peer=p, count=n) for t, p, n in sent],
-            received=[ChannelCount(topic=t, peer=p, count=n) for t, p, n in received],
+            sent=list(sent),
+            received=list(received),
         )
         for name, sent, received in counts
     ]

@@ -48,13 +48,10 @@ class _Frame(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
 
-class ChannelCount(_Frame):
-    """Messages on one topic between one publisher and one reader, counted at one end."""
-
-    topic: str
-    peer: str
-    """The node at the other end: the reader (for ``sent``) or the publisher (``received``)."""
-    count: int
+ChannelCount = tuple[str, str, int]
+"""Messages on one topic between one publisher and one reader, counted at one end: (topic, the
+node at the other end (the reader for ``sent``, the publisher for ``received``), count). Tuples,
+not objects: a run sends thousands of reports."""
 
 
 class NodeCounts(_Frame):

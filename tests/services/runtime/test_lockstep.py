@@ -10,7 +10,7 @@ from services.grading.coordinator import Coordinator, _unsettled
 from services.runtime import Node, NodeSettings
 from services.runtime.clock import Clock
 from services.runtime.lockstep import agent as lockstep
-from services.runtime.lockstep.frames import ChannelCount, NodeCounts, ReportFrame
+from services.runtime.lockstep.frames import NodeCounts, ReportFrame
 from services.runtime.subscription import Subscription
 from services.runtime.timer import Timer
 from shared_models.builtin_interfaces import Time
@@ -25,8 +25,8 @@ def report(settled: bool = True, **nodes: tuple[list[tuple[str, str, int]], list
         nodes=[
             NodeCounts(
                 name="/" + name,
-                sent=[ChannelCount(topic=t, peer=p, count=n) for t, p, n in sent],
-                received=[ChannelCount(topic=t, peer=p, count=n) for t, p, n in received],
+                sent=sent,
+                received=received,
             )
             for name, (sent, received) in nodes.items()
         ],
