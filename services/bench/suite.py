@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from services.bench.camera import camera_family
+from services.bench.grading import grading_family
 from services.bench.report import Result
 from services.bench.runner import Family, Readings, Trial, median_of
 from services.bench.topics import CoreHolder, run_topic_pair
@@ -98,6 +99,7 @@ class Suite:
             camera_family(self.core, window_s=max(self.settings.sim_window_s, 3.0), repetitions=self.settings.sim_repetitions),
             self._rosbridge(),
             self._bag(),
+            grading_family(repetitions=self.settings.startup_repetitions),
             *self._ros2(),
         ]
         if self.plots:

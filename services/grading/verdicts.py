@@ -81,6 +81,10 @@ def as_json(report: GradeReport, *, html: str = "") -> dict[str, Any]:
                 "sim_time_s": round(run.result.sim_time_s, 6),
                 "wall_time_s": round(run.result.wall_time_s, 3),
                 "steps": run.result.steps,
+                "stepping": {
+                    "wall_s": round(run.result.stepping_wall_s, 3),
+                    "cpu_s": {name: round(cpu, 3) for name, cpu in run.result.stepping_cpu_s.items()},
+                },
                 "lockstep": {"kept": run.result.lockstep_lost == 0, "lost": run.result.lockstep_lost, "reason": run.result.lockstep_reason},
                 "nodes": [
                     {"node": node.label, "student": node.student, "exit_code": node.exit_code, "log": str(node.log)}
