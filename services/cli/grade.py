@@ -1,5 +1,5 @@
 """``skydeck grade ASSIGNMENT.yaml FILES...``: run a student's nodes in fresh seeded worlds and
-score what they did (docs/class.md).
+score what they did (docs/grading.md).
 
     skydeck grade examples/assignments/wall_follower.yaml my_wall_follower.py --student ada
 
