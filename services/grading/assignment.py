@@ -38,7 +38,7 @@ from typing import Any, Literal
 import yaml
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
-from services.grading.criteria import CRITERIA, CriterionSpec
+from services.grading.criteria import CRITERIA, CriterionSpec, Options
 from shared_models.errors import SkydeckError
 
 __all__ = ["Assignment", "AssignmentError", "CriterionUse", "SeedKind", "load_assignment"]
@@ -106,7 +106,7 @@ class CriterionUse(_Strict):
             return False
         return value >= self.threshold if self.min is not None else value <= self.threshold
 
-    def options(self) -> BaseModel:
+    def options(self) -> Options:
         """The criterion's options, checked by its own model."""
         return self.spec.params.model_validate(self.params)
 
@@ -172,7 +172,7 @@ class Assignment(_Strict):
                 takes = ", ".join(own) or "none"
                 raise ValueError(f"options.{name}: not an option of the {self.world} world (its options: {takes})")
             try:
-                settings(**{name: value})
+                settings.model_validate({name: value})
             except ValidationError as error:
                 raise ValueError(f"options.{name}: {error.errors()[0]['msg']}") from None
         for index, use in enumerate(self.criteria):
