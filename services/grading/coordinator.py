@@ -67,6 +67,8 @@ class Settling:
 
     lost: int = 0
     last_reason: str = ""
+    stuck: list[int] = field(default_factory=list)
+    """The processes (pids) still busy, or not answering, when the run last did not settle."""
 
 
 @dataclass(eq=False)
@@ -148,6 +150,8 @@ class Coordinator:
             if process.gone.is_set():
                 return None
             raise
+        finally:
+            process.pending.pop(frame.id, None)
 
     def _stepper(self) -> _Process:
         for process in self.processes:
@@ -169,16 +173,30 @@ class Coordinator:
     async def reports(self, after: SteppedFrame | None = None) -> list[ReportFrame]:
         """One report from every process, each once it has settled (or said it has not);
         ``after`` a step: each is first told what the step sent its nodes and the new time."""
+        answered, _ = await self._gather(after, timeout_s=None)
+        return [report for _, report in answered]
+
+    async def _gather(
+        self, after: SteppedFrame | None, timeout_s: float | None
+    ) -> tuple[list[tuple[_Process, ReportFrame]], list[_Process]]:
+        """The reports of the processes that answered within ``timeout_s`` (None: however long),
+        and the processes that did not (a process whose event loop is blocked never answers)."""
         processes = list(self.processes)
-        asks = [self._ask(process, self._settle_frame(process, after)) for process in processes]
-        replies = await asyncio.gather(*asks)
-        reports = []
-        for process, reply in zip(processes, replies, strict=True):
+        asks = [asyncio.ensure_future(self._ask(process, self._settle_frame(process, after))) for process in processes]
+        _, late = await asyncio.wait(asks, timeout=timeout_s)
+        for ask in late:
+            ask.cancel()
+        answered, silent = [], []
+        for process, ask in zip(processes, asks, strict=True):
+            if ask in late:
+                silent.append(process)
+                continue
+            reply = ask.result()
             if isinstance(reply, ReportFrame):
-                reports.append(reply)
+                answered.append((process, reply))
                 process.stepper = process.stepper or reply.stepper
                 process.nodes = [node.name for node in reply.nodes]
-        return reports
+        return answered, silent
 
     def _settle_frame(self, process: _Process, after: SteppedFrame | None) -> SettleFrame:
         if after is None:
@@ -203,14 +221,19 @@ class Coordinator:
         loop = asyncio.get_running_loop()
         deadline = loop.time() + (self.settle_timeout_s if timeout_s is None else timeout_s)
         while True:
-            reports = await self.reports(after)
+            # A process answers within _REPORT_WAIT_S unless its event loop is blocked: past
+            # the deadline and that, it counts as stuck.
+            answered, silent = await self._gather(after, timeout_s=max(deadline - loop.time(), 0.0) + _REPORT_WAIT_S)
             after = None  # the step's messages and time are handled: from now on, plain settles
-            reason = _unsettled(reports)
+            reason = _unsettled([report for _, report in answered])
+            if silent:
+                reason = f"process {', '.join(str(p.pid) for p in silent)} did not answer"
             if reason is None:
                 return True
             if loop.time() > deadline:
                 self.settling.lost += 1
                 self.settling.last_reason = reason
+                self.settling.stuck = [p.pid for p, report in answered if not report.settled] + [p.pid for p in silent]
                 logger.warning("lockstep: the run did not settle: %s", reason)
                 return False
 

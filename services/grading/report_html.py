@@ -16,7 +16,7 @@ from pathlib import Path
 from services.grading.criteria.base import Mark
 from services.grading.grade import GradeReport, SeedRun
 from services.grading.shapes import Box, Pose
-from services.grading.verdicts import format_value
+from services.grading.verdicts import format_value, node_note
 
 __all__ = ["render_report"]
 
@@ -152,11 +152,9 @@ def _seed_section(report: GradeReport, run: SeedRun, out_dir: Path) -> str:
             f"({escape(result.lockstep_reason)}): another run may score differently.</p>"
         )
     for node in result.nodes:
-        if node.exit_code is not None:
-            lines.append(
-                f'<p class="note">{escape(node.label)} exited with status {node.exit_code} before the run ended: '
-                f"see <code>{escape(_relative(node.log, out_dir))}</code>.</p>"
-            )
+        note = node_note(node)
+        if note is not None:
+            lines.append(f'<p class="note">{escape(note)}: see <code>{escape(_relative(node.log, out_dir))}</code>.</p>')
     lines.append("</div>")
     return "".join(lines)
 

@@ -76,6 +76,8 @@ class NodeOutcome:
     exit_code: int | None
     """None: it ran until the run ended."""
     log: Path
+    hung: bool = False
+    """It stayed busy (or stopped answering) for a whole settle: the run stopped it and went on."""
 
 
 @dataclass
@@ -118,6 +120,7 @@ class _Run:
         self.recorder: HostedRecorder | None = None
         self.processes: dict[str, BackgroundProcess] = {}
         self.node_processes: list[tuple[NodeCommand, BackgroundProcess]] = []
+        self.hung: set[int] = set()  # the pids of the student's nodes stopped for never settling
         self.bag = plan.out_dir / "run.mcap"
         self.bag.unlink(missing_ok=True)  # a run graded again replaces its recording
 
@@ -204,6 +207,14 @@ class _Run:
             graph: dict[str, object] = json.loads(reply.read())
         return graph
 
+    def stop_stuck_nodes(self, pids: list[int]) -> None:
+        """Stop the student's node processes among ``pids`` (busy for a whole settle: a loop that
+        never ends, a blocked event loop): the run goes on without them, as after a crash."""
+        for command, process in self.node_processes:
+            if command.student and process.returncode is None and _leads(process.pid, pids):
+                process.stop(timeout_s=2.0)
+                self.hung.add(process.pid)
+
     def _check_own_processes(self) -> None:
         process = self.processes.get("sim")
         if process is not None and process.returncode is not None:
@@ -217,6 +228,15 @@ class _Run:
         await asyncio.gather(*(asyncio.to_thread(p.stop) for p in self.processes.values()))
         await self.coordinator.stop()
         await self.core.stop()
+
+
+def _leads(leader: int, pids: list[int]) -> bool:
+    """Whether ``leader``'s process group (a started process leads its own) holds one of ``pids``."""
+    for pid in pids:
+        with contextlib.suppress(OSError):
+            if pid == leader or os.getpgid(pid) == leader:
+                return True
+    return False
 
 
 def _missing_links(reports: list[ReportFrame], graph: dict[str, object]) -> str | None:
@@ -257,11 +277,13 @@ async def run_world(plan: RunPlan) -> RunResult:
         coordinator = run.coordinator
         stepping_from, cpu_from = time.monotonic(), run.cpu_seconds()
         stepped = await coordinator.step("start")
-        await coordinator.settle(after=stepped)
+        if not await coordinator.settle(after=stepped):
+            await asyncio.to_thread(run.stop_stuck_nodes, coordinator.settling.stuck)
         sim_time_s = stepped.time_s
         while sim_time_s < plan.duration_s - 1e-9:
             stepped = await coordinator.step("advance")
-            await coordinator.settle(after=stepped)
+            if not await coordinator.settle(after=stepped):
+                await asyncio.to_thread(run.stop_stuck_nodes, coordinator.settling.stuck)
             sim_time_s = stepped.time_s
             steps += 1
             if steps % 30 == 0:
@@ -280,6 +302,7 @@ async def run_world(plan: RunPlan) -> RunResult:
             student=command.student,
             exit_code=code,
             log=process.log_path or plan.out_dir,
+            hung=process.pid in run.hung,
         )
         for (command, process), code in zip(run.node_processes, exit_codes, strict=True)
     ]

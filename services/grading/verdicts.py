@@ -13,8 +13,9 @@ import math
 from typing import Any
 
 from services.grading.grade import GradeReport
+from services.grading.run import NodeOutcome
 
-__all__ = ["as_json", "format_value", "verdict_lines"]
+__all__ = ["as_json", "format_value", "node_note", "number", "verdict_lines"]
 
 
 def format_value(value: float) -> str:
@@ -44,7 +45,16 @@ def verdict_lines(report: GradeReport) -> list[str]:
     return lines
 
 
-def _number(value: float) -> float | None:
+def node_note(node: NodeOutcome) -> str | None:
+    """What befell a node before the run ended, in words (None: it ran to the end); the log follows."""
+    if node.hung:
+        return f"{node.label} stayed busy for a whole settle (a loop that never ends?) and was stopped"
+    if node.exit_code is not None:
+        return f"{node.label} exited with status {node.exit_code} before the run ended"
+    return None
+
+
+def number(value: float) -> float | None:
     """JSON has no infinity or NaN: those are null (the detail says why)."""
     return round(value, 6) if math.isfinite(value) else None
 
@@ -66,9 +76,9 @@ def as_json(report: GradeReport, *, html: str = "") -> dict[str, Any]:
                 "comparison": criterion.use.comparison,
                 "threshold": criterion.use.threshold,
                 "passed": criterion.passed,
-                "figure": _number(criterion.worst.value),
+                "figure": number(criterion.worst.value),
                 "seeds": [
-                    {"seed": f.seed, "figure": _number(f.value), "passed": f.passed, "detail": f.detail}
+                    {"seed": f.seed, "figure": number(f.value), "passed": f.passed, "detail": f.detail}
                     for f in criterion.figures
                 ],
             }
@@ -87,7 +97,7 @@ def as_json(report: GradeReport, *, html: str = "") -> dict[str, Any]:
                 },
                 "lockstep": {"kept": run.result.lockstep_lost == 0, "lost": run.result.lockstep_lost, "reason": run.result.lockstep_reason},
                 "nodes": [
-                    {"node": node.label, "student": node.student, "exit_code": node.exit_code, "log": str(node.log)}
+                    {"node": node.label, "student": node.student, "exit_code": node.exit_code, "hung": node.hung, "log": str(node.log)}
                     for node in run.result.nodes
                 ],
             }

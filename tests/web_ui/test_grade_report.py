@@ -50,7 +50,7 @@ def test_the_report_shows_the_run_over_the_room_and_every_criterion(page: tuple[
     names = [rows.nth(i).get_attribute("data-name") for i in range(4)]
     assert names == ["wall_follower.time_to_wall_s", "wall_follower.band_fraction", "wall_follower.followed_m", "wall_follower.bumps"]
     bumps = view.locator('tr[data-name="wall_follower.bumps"] td.num').nth(1)  # type: ignore[attr-defined]
-    assert bumps.locator(".verdict").inner_text() == "FAIL" and "left_front" in bumps.inner_text()
+    assert bumps.locator(".verdict").inner_text() == "FAIL" and "_front)" in bumps.inner_text()
 
     svg = view.locator("#seed-3 svg.map")  # type: ignore[attr-defined]
     box = svg.bounding_box()

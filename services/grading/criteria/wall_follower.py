@@ -5,7 +5,8 @@ robot first came within the band (it starts in the middle of the room and must d
 
 - ``wall_follower.time_to_wall_s``: when it first came within the band;
 - ``wall_follower.band_fraction``: the share of the time since then that it stayed within
-  ``distance`` ± ``tolerance`` of a wall on its ``side``;
+  ``distance`` ± ``tolerance`` of a wall on its ``side`` (the wall's bearing within 60° of
+  square to the robot: a wall ahead is on no side);
 - ``wall_follower.followed_m``: how far it drove within the band (a robot that parks by the
   wall stays within it, but follows nothing);
 - ``wall_follower.bumps``: contacts of the bumper.
@@ -26,6 +27,11 @@ from services.grading.shapes import Box, Pose
 from services.grading.tracks import Tracks
 
 __all__ = ["CRITERIA", "Band", "BandOptions", "in_band"]
+
+
+# The nearest wall is on a side when its bearing is within 60 degrees of square to the robot:
+# a robot driving at a wall has it ahead, whichever way it drifts.
+_SIDE_FROM, _SIDE_TO = math.radians(30.0), math.radians(150.0)
 
 
 class BandOptions(Options):
@@ -50,7 +56,8 @@ def in_band(track: Sequence[Pose], walls: Sequence[Box], options: BandOptions) -
     inside = []
     for pose in track:
         distance, bearing = nearest_wall(pose, walls)
-        on_side = options.side == "either" or (bearing < 0.0) == (options.side == "right")
+        beside = _SIDE_FROM <= abs(bearing) <= _SIDE_TO  # a wall dead ahead (or behind) is on no side
+        on_side = beside and (options.side == "either" or (bearing < 0.0) == (options.side == "right"))
         inside.append(on_side and abs(distance - options.distance) <= options.tolerance)
     first = next((i for i, ok in enumerate(inside) if ok), None)
     return Band(inside, first)

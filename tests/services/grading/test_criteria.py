@@ -87,6 +87,14 @@ def test_a_robot_driving_into_the_wall_leaves_the_band() -> None:
     assert measure("wall_follower.followed_m", tracks, **options).value < 0.5
 
 
+@pytest.mark.parametrize("drift_m", [-0.3, 0.3])
+def test_a_wall_ahead_is_on_no_side_whichever_way_the_robot_drifts(drift_m: float) -> None:
+    # At the +y wall, a little askew: the wall is ahead (bearing ~ 5 degrees), never beside it.
+    tracks = run(along(polyline([(0.0, 0.0), (drift_m, 3.8)], 0.2), 25.0))
+    for side in ("right", "left", "either"):
+        assert measure("wall_follower.time_to_wall_s", tracks, side=side).value == math.inf
+
+
 def test_a_robot_that_never_reaches_a_wall() -> None:
     tracks = run(along(polyline([(0.0, 0.0), (1.0, 0.0)], 0.2), 20.0))
     assert measure("wall_follower.time_to_wall_s", tracks).value == math.inf

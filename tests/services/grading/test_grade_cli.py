@@ -54,10 +54,47 @@ def test_a_student_name_that_cannot_name_a_folder(capsys: pytest.CaptureFixture[
     assert status == 2 and "--student '../x'" in err
 
 
-def test_class_needs_the_class_command(capsys: pytest.CaptureFixture[str]) -> None:
-    status, err = grade(capsys, shipped("estop"), "estop", "--class")
+def test_no_files_at_all(capsys: pytest.CaptureFixture[str]) -> None:
+    status, err = grade(capsys, shipped("estop"))
+    assert (status, err) == (2, "skydeck: error: give the student's node files (FILE.py) or built-in nodes to grade\n")
+
+
+@pytest.mark.parametrize(
+    ("extra", "says"),
+    [
+        (["estop"], "--class grades the files in SUBMISSIONS/NAME/: give no FILE as well"),
+        (["--student", "ada"], "--class names each student by their folder: give no --student as well"),
+    ],
+)
+def test_class_mode_takes_no_files_or_student(
+    extra: list[str], says: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    status, err = grade(capsys, shipped("estop"), *extra, "--class", tmp_path)
+    assert (status, err) == (2, f"skydeck: error: {says}\n")
+
+
+def test_a_roster_needs_class_mode(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    status, err = grade(capsys, shipped("estop"), "estop", "--roster", tmp_path / "roster.txt")
+    assert (status, err) == (2, "skydeck: error: --roster goes with --class SUBMISSIONS (it says whose folders are graded)\n")
+
+
+def test_class_mode_refuses_a_bad_roster_or_folder_in_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    (tmp_path / "subs" / "ada").mkdir(parents=True)
+    roster = tmp_path / "roster.txt"
+    roster.write_text("ada\nbob  # late joiner\nAda\n")
+    status, err = grade(capsys, shipped("estop"), "--class", tmp_path / "subs", "--roster", roster, "--out", tmp_path / "out")
     assert status == 2
-    assert err == "skydeck: error: --class grades every student of a running class: it needs `skydeck class`, which is not here yet\n"
+    assert err == (
+        f"skydeck: error: {roster}:3: 'Ada' is named as 'ada' and 'Ada' (names differ in more than case): "
+        "each student needs a name of their own\n"
+    )
+    status, err = grade(capsys, shipped("estop"), "--class", tmp_path / "nowhere", "--out", tmp_path / "out")
+    assert (status, err.count("\n")) == (2, 1) and "nowhere: no such folder" in err
+    (tmp_path / "subs" / "Grace Hopper").mkdir()
+    status, err = grade(capsys, shipped("estop"), "--class", tmp_path / "subs", "--out", tmp_path / "out")
+    assert (status, err.count("\n")) == (2, 1)
+    assert "Grace Hopper: 'Grace Hopper' cannot be a student's name" in err
+    assert not (tmp_path / "out").exists()  # refused before anything was made
 
 
 def test_an_out_folder_that_cannot_be_made(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
