@@ -60,6 +60,7 @@ class StudentResult:
 
     def entry(self, assignment: Assignment) -> dict[str, Any]:
         """The student's line of the gradebook."""
+        criteria: list[dict[str, Any]]
         if self.report is None:
             criteria = [
                 {"name": use.name, "passed": False, "figure": None, "verdict": f"FAIL {use.name}: not graded: {self.problem}"}

@@ -60,7 +60,7 @@ def test_the_report_shows_the_run_over_the_room_and_every_criterion(page: tuple[
     assert len(points) > 100
     # Drawn where it drove: from the start (the room's middle) towards the +x wall, to the right.
     xs = [float(point.split(",")[0]) for point in points]
-    assert xs[-1] - xs[0] > 0.4 * box["width"]
+    assert xs[-1] - xs[0] > 0.3 * box["width"]  # about half the room (4 m of 8), the map being the room and a margin
     assert svg.locator("polyline.person").count() == 1
     assert svg.locator("g.mark.bump").count() >= 1 and svg.locator("circle.start").count() == 1
     assert "seed-3/run.mcap" in view.locator("#seed-3").inner_text()  # type: ignore[attr-defined]

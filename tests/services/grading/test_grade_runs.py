@@ -4,13 +4,14 @@ fails on the right criterion, the same run graded twice scores the same, to the 
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
 
-from services.grading.assignment import load_assignment
+from services.grading.assignment import hidden_seed, load_assignment
 from services.grading.grade import GradeReport, grade
 from services.grading.tracks import read_tracks
 from services.grading.verdicts import verdict_lines
@@ -107,3 +108,20 @@ def test_a_node_that_crashes_fails_and_says_so(tmp_path: Path) -> None:
     node = record["runs"][0]["nodes"][0]
     assert node["node"] == "crashes.py" and node["exit_code"] == 1
     assert "this student's node is broken" in Path(node["log"]).read_text()
+
+
+@pytest.mark.timeout(240)
+def test_the_reference_passes_a_hidden_seed_only_the_secret_gives(tmp_path: Path) -> None:
+    path = changed("estop", tmp_path, duration_s=20)
+    path.write_text(path.read_text().replace("hidden: 2", "hidden: 1"))
+    env = {**os.environ, "SKYDECK_GRADE_SECRET": "a secret kept out of the repository"}
+    done = subprocess.run(
+        [sys.executable, "-m", "services.cli", "grade", str(path), "estop", "--seeds", "hidden", "--out", str(tmp_path / "out"), "--json"],
+        capture_output=True, text=True, timeout=200, env=env,
+    )  # fmt: skip
+    assert done.returncode == 0, done.stdout + done.stderr
+    record = json.loads(done.stdout)
+    seed = hidden_seed("a secret kept out of the repository", "estop", 0)
+    assert record["seeds"] == {"kind": "hidden", "list": [seed]}
+    assert record["passed"] is True and [run["seed"] for run in record["runs"]] == [seed]
+    assert seed not in load_assignment(path).seeds.visible
