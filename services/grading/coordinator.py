@@ -182,6 +182,8 @@ class Coordinator:
         """The reports of the processes that answered within ``timeout_s`` (None: however long),
         and the processes that did not (a process whose event loop is blocked never answers)."""
         processes = list(self.processes)
+        if not processes:
+            return [], []
         asks = [asyncio.ensure_future(self._ask(process, self._settle_frame(process, after))) for process in processes]
         _, late = await asyncio.wait(asks, timeout=timeout_s)
         for ask in late:

@@ -6,11 +6,13 @@ from __future__ import annotations
 import asyncio
 import logging
 
+from websockets.asyncio.client import connect
+
 from services.grading.coordinator import Coordinator, _unsettled
 from services.runtime import Node, NodeSettings
 from services.runtime.clock import Clock
 from services.runtime.lockstep import agent as lockstep
-from services.runtime.lockstep.frames import NodeCounts, ReportFrame
+from services.runtime.lockstep.frames import HelloFrame, NodeCounts, ReportFrame
 from services.runtime.subscription import Subscription
 from services.runtime.timer import Timer
 from shared_models.builtin_interfaces import Time
@@ -135,4 +137,22 @@ async def test_a_run_stepped_by_hand_moves_the_clock_only_once_the_step_has_arri
     finally:
         await follower.stop()
         await world.stop()
+        await coordinator.stop()
+
+
+async def test_a_process_that_stops_answering_is_stuck_and_named_by_its_pid() -> None:
+    """A process whose event loop is blocked never answers a settle: the coordinator waits no
+    longer than the settle (plus a report's own wait) and names it, so the run can stop it."""
+    coordinator = Coordinator(settle_timeout_s=0.3)
+    url = await coordinator.start()
+    try:
+        async with connect(url) as silent:
+            await silent.send(HelloFrame(pid=424242).model_dump_json())
+            assert await coordinator.wait_for_processes(1, timeout_s=10.0)
+            settled = await asyncio.wait_for(coordinator.settle(), timeout=30.0)
+            assert settled is False
+            assert coordinator.settling.stuck == [424242] and coordinator.settling.lost == 1
+            assert coordinator.settling.last_reason == "process 424242 did not answer"
+            assert await silent.recv()  # it was asked (a settle frame), and never answered
+    finally:
         await coordinator.stop()
