@@ -125,3 +125,19 @@ def test_the_reference_passes_a_hidden_seed_only_the_secret_gives(tmp_path: Path
     assert record["seeds"] == {"kind": "hidden", "list": [seed]}
     assert record["passed"] is True and [run["seed"] for run in record["runs"]] == [seed]
     assert seed not in load_assignment(path).seeds.visible
+
+
+@pytest.mark.timeout(240)
+def test_a_safety_stop_that_never_stops_fails_on_the_clearance_and_the_bumps(tmp_path: Path) -> None:
+    """The wrong node graded against another assignment: it travels (that passes) and comes to
+    rest against the wall (it moves no more: that passes too), but with no gap and a bump."""
+    path = changed("estop", tmp_path, seeds=[1], duration_s=25)
+    done = skydeck_grade(path, SOLUTIONS / "into_the_wall.py", "--out", tmp_path / "out")
+    assert done.returncode == 1, done.stdout + done.stderr
+    verdicts = {line.split()[1]: line.split()[0] for line in done.stdout.splitlines() if line.startswith(("PASS", "FAIL"))}
+    assert verdicts == {
+        "estop.travel_m": "PASS",
+        "estop.clearance_m": "FAIL",
+        "estop.moved_after_stop_m": "PASS",
+        "estop.bumps": "FAIL",
+    }
