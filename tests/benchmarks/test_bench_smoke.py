@@ -84,7 +84,7 @@ def test_whole_quick_run_has_every_row_of_the_issue(tmp_path: Path) -> None:
         "topic_throughput", "topic_latency_p50", "topic_latency_p99", "fanout_100", "service_rtt_p50",
         "gateway_service_rtt_p50", "sim_rtf", "mission_tour_ratio", "mission_flown_ratio", "mission_time",
         "startup", "zenoh_throughput", "zenoh_latency_p50", "robot_rtf", "robot_world_rtf", "robot_scan_ms",
-        "robot_rtf_per_cpu",
+        "robot_rtf_per_cpu", "grade_run_s",
     } <= names  # fmt: skip
 
 
