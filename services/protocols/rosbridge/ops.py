@@ -9,7 +9,7 @@ in :mod:`.frames`.
 from __future__ import annotations
 
 import json
-from typing import Any
+from typing import Any, Literal
 
 from pydantic import Field
 
@@ -47,6 +47,8 @@ class RosbridgeOp(Op):
 class Advertise(RosbridgeOp):
     topic: str
     type: str
+    latch: bool = False  # roslibjs's and roslibpy's: the latest message goes to late subscribers
+    queue_size: int = Field(default=100, ge=0)  # read as rosbridge_suite reads it, not used (every reader has its own queue)
 
 
 class Unadvertise(RosbridgeOp):
@@ -55,7 +57,8 @@ class Unadvertise(RosbridgeOp):
 
 class Publish(RosbridgeOp):
     topic: str
-    msg: dict[str, Any]
+    msg: dict[str, Any] = Field(default_factory=dict)
+    latch: bool = False  # for a topic published without an advertise first
 
 
 class Subscribe(RosbridgeOp):
@@ -64,7 +67,7 @@ class Subscribe(RosbridgeOp):
     throttle_rate: int = Field(default=0, ge=0)  # ms between messages
     queue_length: int = Field(default=0, ge=0, le=10_000)
     fragment_size: int | None = Field(default=None, gt=0)
-    compression: str | None = None
+    compression: Literal["none", "png", "cbor", "cbor-raw"] | None = None
 
 
 class Unsubscribe(RosbridgeOp):
@@ -82,7 +85,7 @@ class CallService(RosbridgeOp):
 
 class ServiceResponse(RosbridgeOp):
     service: str
-    values: Any = None
+    values: Any = None  # the response's fields; a text with result false is the reason it failed
     result: bool = True
 
 
@@ -100,7 +103,15 @@ class SetLevel(RosbridgeOp):
 
 
 class Auth(RosbridgeOp):
-    mac: str  # the token (rosauth's other fields are not used)
+    """ROS 1's rosauth op: ``mac`` is the token itself, or rosauth's MAC made with it (:mod:`.auth`)."""
+
+    mac: str
+    client: str = ""
+    dest: str = ""
+    rand: str = ""
+    t: float | dict[str, int] = 0
+    level: str = ""
+    end: float | dict[str, int] = 0
 
 
 class Fragment(RosbridgeOp):
