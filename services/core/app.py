@@ -93,6 +93,7 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
     core_url = settings.advertise_url or f"http://{reachable_host(settings.host)}:{settings.port}"
     core_node = CoreNode(registry, settings, core_url)
     servers = EndpointServers(settings, endpoints)
+    rosparam = ParameterTree()  # ROS 1's parameter server: the core's, as roscore's
 
     @contextlib.asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
@@ -107,7 +108,7 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
         app.state.gateway = gateway
         app.state.calls = calls
         app.state.recordings = Recordings(settings.recordings_folder, core_node, registry)
-        await servers.start(CoreAccess(core_node, registry, guests, calls, gateway, settings))
+        await servers.start(CoreAccess(core_node, registry, guests, calls, gateway, settings, rosparam))
         try:
             yield
         finally:
@@ -134,7 +135,7 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
     app.state.settings = settings
     app.state.core_node = core_node
     app.state.endpoints = servers
-    app.state.rosparam = ParameterTree()  # ROS 1's parameter server: the core's, as roscore's
+    app.state.rosparam = rosparam
     app.service_calls_first = ServiceCallsFirst(registry, lambda: getattr(app.state, "gateway", None))
     install_error_handlers(app)
     app.include_router(api_router)
