@@ -72,7 +72,7 @@ test: $(STAMP) install-vision test-deps install-ros2
 
 lint: $(STAMP)
 	$(BIN)/ruff check .
-	$(BIN)/mypy services shared_models sim_server
+	$(BIN)/mypy services shared_models sim_server benchmarks
 
 bench: $(STAMP) bytecode
 	$(BIN)/skydeck bench --out bench.json

@@ -93,9 +93,7 @@ def _completion(args: argparse.Namespace) -> int:
         except ValueError:
             index = len(words) - 1
         words += [""] * (index + 1 - len(words))  # the shell's $(...) drops a last, empty word
-        from services.cli.main import build_parser
-
-        print("\n".join(candidates(build_parser(), words[1 : index + 1])))
+        print("\n".join(candidates(args.parser, words[1 : index + 1])))
         return 0
     print(_BASH if args.shell == "bash" else _ZSH, end="")
     return 0
@@ -203,13 +201,12 @@ def _launch_arguments(file: str, given: list[str], typed: str) -> list[str]:
 
 def _live(kind: str, typed: str) -> list[str]:
     """Names of the running system (quietly none if the core does not answer at once)."""
-    import httpx
-
-    from services.cli.core_client import auth_headers, core_url
+    from services.cli.core_client import core_url, get
+    from services.runtime.http_client import HttpError
 
     try:
-        graph = httpx.get(core_url() + "/api/graph", headers=auth_headers(), timeout=_GRAPH_TIMEOUT_S).json()
-    except (httpx.HTTPError, ValueError):
+        graph = get(core_url() + "/api/graph", timeout_s=_GRAPH_TIMEOUT_S).json()
+    except (HttpError, ValueError):
         return []
     if kind == "actions":
         from services.runtime.actions.names import actions_in_graph

@@ -35,6 +35,8 @@ def build_parser() -> argparse.ArgumentParser:
         prog="skydeck",
         description="ROS-style robot software over HTTP and WebSocket. The core is found at SKYDECK_CORE_URL.",
     )
+    # The verbs that need the whole command line (completion's) find it here.
+    parser.set_defaults(parser=parser)
     # Every level is a SuggestingParser (argparse makes subparsers of the parser's class); the
     # verb modules take the base type, which the action's type parameter cannot say (invariant).
     subparsers = cast(
@@ -49,14 +51,11 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _add_optional(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    # Verbs whose modules pull in heavier dependencies register themselves here.
-    from services.cli import launch
+    # Verbs whose modules pull in heavier dependencies (launch), or run what an installation may
+    # not have (bench: the checkout's benchmarks), register themselves here.
+    from services.cli import bench, launch
 
     launch.add_parser(subparsers)
-    try:
-        from services.cli import bench
-    except ImportError:
-        return
     bench.add_parser(subparsers)
 
 

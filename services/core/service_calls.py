@@ -1,9 +1,9 @@
 """The one way a call reaches a service through the core, whoever asks.
 
 ``POST /NAME`` over HTTP and the protocol adapters' calls (rosbridge's ``call_service``,
-Foxglove's service requests) all go through :meth:`ServiceCalls.call` (or
-:meth:`ServiceCalls.call_then`, its callback form, which the core's HTTP connections use), so the
-same checks and the same failures apply to every caller, each edge mapping them to its own reply:
+Foxglove's service requests) all go through :meth:`ServiceCalls.start` (awaited:
+:meth:`ServiceCalls.call`), so the same checks and the same failures apply to every caller, each
+edge mapping them to its own reply:
 
     404  no service has that name (405: it is a topic)
     401  the write token is missing or wrong
@@ -32,10 +32,18 @@ from services.core.registry import Registry
 from services.core.settings import CoreSettings
 from services.runtime.auth import NOT_AUTHORISED, token_is_valid
 from services.runtime.errors import ServiceError
-from services.runtime.http_client import HttpClient, HttpError, HttpReply, HttpTimeout, Outcome
+from services.runtime.http_client import (
+    Cancellable,
+    HttpClient,
+    HttpError,
+    HttpReply,
+    HttpTimeout,
+    Outcome,
+    outcome_of,
+)
 from shared_models.errors import SkydeckError
 
-__all__ = ["ServiceCallFailed", "ServiceCalls", "ServiceReply", "error_reply"]
+__all__ = ["CallOutcome", "ServiceCallFailed", "ServiceCalls", "ServiceReply", "error_reply"]
 
 JSON = "application/json"
 logger = logging.getLogger("skydeck.core")
@@ -83,6 +91,10 @@ class ServiceCallFailed(ServiceError):
         return error_reply(self.status, str(self))
 
 
+CallOutcome = ServiceReply | ServiceCallFailed
+"""What a call came to: the service's reply (of any status), or why none came."""
+
+
 @dataclass(slots=True)
 class _Target:
     """The node a call goes to, and the request's headers for it."""
@@ -117,7 +129,11 @@ class ServiceCalls:
         self._guests = guests
         self._settings = settings
         self._http = http
-        self._hosted_calls: set[asyncio.Task[None]] = set()  # call_then's, kept until they end
+        self._hosted_calls: set[asyncio.Task[None]] = set()  # kept until they end: the loop holds tasks weakly
+
+    def serves(self, name: str) -> bool:
+        """Whether ``name`` is a registered service's (a POST to it is a call through the core)."""
+        return self._registry.service(name) is not None
 
     async def call(
         self,
@@ -132,42 +148,50 @@ class ServiceCalls:
 
         Raises ServiceCallFailed when no service answered; see the module docstring.
         """
-        timeout_s = timeout_s or self._settings.gateway_timeout_s
-        target = self._target(name, token=token, content_type=content_type)
-        if target is None:
-            return await self.call_hosted(name, body, timeout_s=timeout_s)
-        try:
-            reply = await self._http.post(target.url, body, headers=target.headers, timeout_s=timeout_s)
-        except (ValueError, HttpError) as error:
-            raise target.failed(error, timeout_s) from None
-        return _served(reply)
+        outcome: CallOutcome = await outcome_of(
+            lambda on_done: self.start(
+                name, body, token=token, timeout_s=timeout_s, content_type=content_type, on_done=on_done
+            )
+        )
+        if isinstance(outcome, ServiceCallFailed):
+            raise outcome
+        return outcome
 
-    def call_then(
-        self, name: str, body: bytes, *, token: str, content_type: str | None, then: Callable[[ServiceReply], None]
-    ) -> None:
-        """:meth:`call`, for a caller that takes the reply in a callback (the core's HTTP
-        connections): ``then`` gets the service's reply, or an :func:`error_reply` saying why none
-        came. It is called from the node reply's own I/O callback, with no task and no turn of the
-        loop between (a forwarded call's busiest path: docs/performance.md)."""
-        timeout_s = self._settings.gateway_timeout_s
+    def start(
+        self,
+        name: str,
+        body: bytes,
+        *,
+        token: str,
+        on_done: Callable[[CallOutcome], None],
+        timeout_s: float | None = None,
+        content_type: str | None = JSON,
+    ) -> Cancellable | None:
+        """The call itself, :meth:`call` being it awaited: ``on_done`` gets the service's reply, or
+        the ServiceCallFailed of why none came, once. For a service on a node it is called from
+        the node reply's own I/O callback, with no task and no turn of the loop between (the core's
+        HTTP connections forward calls so: a forwarded call's busiest path, docs/performance.md).
+        Returns what cancels the call, if it is still out."""
+        timeout_s = timeout_s or self._settings.gateway_timeout_s
         try:
             target = self._target(name, token=token, content_type=content_type)
         except ServiceCallFailed as failed:
-            then(failed.reply())
-            return
+            on_done(failed)
+            return None
         if target is None:
-            task = asyncio.get_running_loop().create_task(self._hosted_then(name, body, timeout_s, then))
+            task = asyncio.get_running_loop().create_task(self._hosted(name, body, timeout_s, on_done))
             self._hosted_calls.add(task)
             task.add_done_callback(self._hosted_calls.discard)
-            return
+            return task
 
         def replied(outcome: Outcome) -> None:
-            then(_served(outcome) if isinstance(outcome, HttpReply) else target.failed(outcome, timeout_s).reply())
+            on_done(_served(outcome) if isinstance(outcome, HttpReply) else target.failed(outcome, timeout_s))
 
         try:
-            self._http.start("POST", target.url, body, headers=target.headers, timeout_s=timeout_s, on_done=replied)
+            return self._http.start("POST", target.url, body, headers=target.headers, timeout_s=timeout_s, on_done=replied)
         except (ValueError, HttpError) as error:
-            then(target.failed(error, timeout_s).reply())
+            on_done(target.failed(error, timeout_s))
+            return None
 
     def _target(self, name: str, *, token: str, content_type: str | None) -> _Target | None:
         """Where a call of ``name`` goes (None: a service hosted here), or ServiceCallFailed."""
@@ -188,13 +212,13 @@ class ServiceCalls:
             headers["authorization"] = f"Bearer {token}"  # also when it came as ?token= (a browser)
         return _Target(name, record.description.name, record.description.url.rstrip("/") + name, headers)
 
-    async def _hosted_then(self, name: str, body: bytes, timeout_s: float, then: Callable[[ServiceReply], None]) -> None:
+    async def _hosted(self, name: str, body: bytes, timeout_s: float, on_done: Callable[[CallOutcome], None]) -> None:
         try:
             reply = await self.call_hosted(name, body, timeout_s=timeout_s)
         except Exception:  # a fault of ours: said in the log, as uvicorn says an app's
             logger.exception("calling %s, hosted by the core, failed", name)
             reply = error_reply(500, f"{name} failed in the core: see its log")
-        then(reply)
+        on_done(reply)
 
     async def call_hosted(self, name: str, body: bytes, *, timeout_s: float | None = None) -> ServiceReply:
         """Answer a call to a service the core hosts for a guest, as a node's route would."""

@@ -59,6 +59,7 @@ class _Goal:
         self.result: Message | None = None
         self.state = SimpleGoalState.PENDING
         self.seen = False  # in the server's status list at least once
+        self.reported = False  # done_cb has returned: wait_for_result wakes only then, as in ROS
         self.done_cb, self.active_cb, self.feedback_cb = done_cb, active_cb, feedback_cb
 
 
@@ -140,8 +141,9 @@ class SimpleActionClient:
             logerr("Called wait_for_result when no goal exists")
             return False
         deadline = time.monotonic() + limit if limit > 0 else None
+        goal = self._goal
         with self._done:
-            while not process.is_shutdown() and self.simple_state != SimpleGoalState.DONE:
+            while not process.is_shutdown() and not goal.reported and self._goal is goal:
                 left = 0.1 if deadline is None else min(0.1, deadline - time.monotonic())
                 if left <= 0:
                     break
@@ -238,10 +240,17 @@ class SimpleActionClient:
 
     def _finish(self, goal: _Goal, status: int, text: str, result: Message | None, calls: list[Callable[[], Any]]) -> None:
         goal.status, goal.text, goal.result, goal.state = status, text, result, SimpleGoalState.DONE
-        self._done.notify_all()
-        if goal.done_cb is not None:
-            done_cb = goal.done_cb
-            calls.append(lambda: done_cb(status, result))
+        calls.append(lambda: self._report(goal, status, result))
+
+    def _report(self, goal: _Goal, status: int, result: Message | None) -> None:
+        # ROS's client runs done_cb before it wakes a waiter: a program's prints stay in order.
+        try:
+            if goal.done_cb is not None:
+                goal.done_cb(status, result)
+        finally:
+            with self._done:
+                goal.reported = True
+                self._done.notify_all()
 
 
 def _terminal() -> tuple[int, ...]:

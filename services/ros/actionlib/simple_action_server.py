@@ -33,8 +33,8 @@ from typing import Any
 
 from services.ros.actionlib.action_server import ActionServer, ServerGoalHandle
 from services.ros.actionlib.spec import goal_status
-from services.ros.rospy.core import process
-from services.ros.rospy.log import logerr, logwarn, report
+from services.ros.rospy.core import process, report
+from services.ros.rospy.log import logerr, logwarn
 from shared_models import Message
 
 __all__ = ["SimpleActionServer"]

@@ -31,8 +31,17 @@ def _in_new_terminal(command: str, **env: str) -> subprocess.CompletedProcess[st
     )  # fmt: skip
 
 
+def _planned(target: str) -> subprocess.CompletedProcess[str]:
+    """What `make -n TARGET` would run, as a user's shell runs it (not inside `make test`'s make)."""
+    outside_make = {k: v for k, v in os.environ.items() if k not in ("MAKEFLAGS", "MAKELEVEL", "MFLAGS", "MAKEOVERRIDES")}
+    return subprocess.run(
+        ["make", "--no-print-directory", "-n", target], cwd=REPO, env=outside_make,
+        capture_output=True, text=True, timeout=30, check=True,
+    )  # fmt: skip
+
+
 def test_make_install_ends_with_how_a_new_terminal_finds_skydeck() -> None:
-    planned = subprocess.run(["make", "-n", "install"], cwd=REPO, capture_output=True, text=True, timeout=30, check=True)
+    planned = _planned("install")
     last = planned.stdout.strip().splitlines()[-1]
     activate = REPO / ".venv" / "bin" / "activate"
     assert last.startswith("echo ") and f"source {activate}" in last, last
@@ -45,7 +54,7 @@ def test_make_install_ends_with_how_a_new_terminal_finds_skydeck() -> None:
 
 def test_make_up_and_make_robot_launch_without_the_install_line() -> None:
     for target, command in (("up", ".venv/bin/skydeck launch start_mission:="), ("robot", ".venv/bin/skydeck launch robot")):
-        planned = subprocess.run(["make", "-n", target], cwd=REPO, capture_output=True, text=True, timeout=30, check=True)
+        planned = _planned(target)
         lines = planned.stdout.strip().splitlines()
         assert lines[-1].startswith(command) and not any(line.startswith("echo") for line in lines), lines
 

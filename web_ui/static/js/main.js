@@ -20,6 +20,7 @@ import { StatusBanner } from "./status.js";
 import { Tabs } from "./tabs.js";
 import { Teleop } from "./teleop.js";
 import { View3DLoader } from "./view3d/loader.js";
+import { WindowsView } from "./windows.js";
 import { DRONE_TOPICS, World } from "./world.js";
 
 const $ = (id) => document.getElementById(id);
@@ -32,8 +33,10 @@ const tabs = new Tabs(document.querySelector(".tabs"));
 // The main view: the 2D map or the 3D view (remembered across reloads).
 const viewTabs = new Tabs($("map-panel"));
 const view3d = new View3DLoader($("view3d"));
+const windows = new WindowsView({ tab: $("windows-tab"), list: $("windows-list"), empty: $("windows-empty") });
 viewTabs.addEventListener("change", () => {
   view3d.setShown(viewTabs.current === "view3d");
+  windows.setShown(viewTabs.current === "windows");
   localStorage.setItem("skydeck.view", viewTabs.current);
 });
 
@@ -117,6 +120,7 @@ graph.addEventListener("update", () => {
   parameters.updateGraph(graph.graph);
   actions.updateGraph(graph.graph);
   view3d.updateGraph(graph.graph);
+  windows.updateGraph(graph.graph);
 });
 function expandGraph(expanded) {
   const button = $("graph-expand");
@@ -174,7 +178,7 @@ world.addEventListener("ai-status", renderMission);
 
 initTokenButton($("token-button"));
 tabs.show("topics");
-viewTabs.show(localStorage.getItem("skydeck.view") === "view3d" ? "view3d" : "map");
+viewTabs.show(["view3d", "windows"].includes(localStorage.getItem("skydeck.view")) ? localStorage.getItem("skydeck.view") : "map");
 world.start();
 graph.start();
 layers.restore();
@@ -285,6 +289,12 @@ window.skydeck = Object.freeze({
   /** Client (page) coordinates of map point (x, y): where to click to fly there. */
   worldToClient: (x, y) => map.worldToClient(x, y),
   clientToWorld: (x, y) => map.clientToWorld(x, y),
+  /** The OpenCV windows of programs (the Windows tab): per window its description, frames shown, sliders, input sent. */
+  get windows() {
+    return windows.snapshot();
+  },
+  /** Client (page) coordinates of pixel (x, y) of the window whose image topic is `topic` (null if none). */
+  windowPoint: (topic, x, y) => windows.panel(topic)?.clientPoint(x, y) ?? null,
   /** The 3D view: fixed frame, frames, camera, world, displays (what each draws, in the fixed frame), frame times. */
   view3d: (options) => view3d.snapshot(options),
 });
