@@ -14,9 +14,9 @@ import logging
 from collections.abc import Callable
 from typing import Any
 
+import services.protocols.rosbridge.clock as clock
 from services.core.access import CoreAccess
 from services.core.guests import Guest
-from services.protocols.rosbridge import clock
 from services.runtime.clock import ClockTime
 from services.runtime.service import Service
 from services.runtime.subscription import RawSubscription
@@ -98,6 +98,11 @@ class CoreHost:
         publisher = CorePublisher(self, msg_type, resolve_name(topic), latched=latched)
         self._publishers.append(publisher)
         return publisher
+
+    def destroy_publisher(self, publisher: CorePublisher) -> None:
+        if publisher in self._publishers:
+            self._publishers.remove(publisher)
+            publisher.close()
 
     def create_subscription(
         self, msg_type: type[Message], topic: str, callback: Callable[[Any], None], qos_profile: int = 10

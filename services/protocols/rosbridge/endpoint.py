@@ -28,9 +28,9 @@ from typing import Any
 
 from starlette.websockets import WebSocket
 
+import services.protocols.rosbridge.clock as clock
 from services.core.access import CoreAccess
 from services.protocols.ops import JsonOps, Refused
-from services.protocols.rosbridge import clock
 from services.protocols.rosbridge.action_hosting import (
     ActionFeedback,
     ActionResult,
@@ -57,6 +57,7 @@ from services.protocols.rosbridge.ops import (
     Unsubscribe,
 )
 from services.protocols.rosbridge.service_ops import ConnectionServices
+from services.protocols.rosbridge.tf_republisher import TFRepublisher
 from services.protocols.rosbridge.topics import ConnectionTopics
 from services.protocols.session import ClientSession, incoming
 from services.runtime.edge.frames import close_with
@@ -73,8 +74,9 @@ _LEVELS = ("info", "warning", "error", "none")
 class RosbridgeEndpoint:
     """Serves rosbridge connections; the publish envelope of each frame is made once for all."""
 
-    def __init__(self, access: CoreAccess) -> None:
+    def __init__(self, access: CoreAccess, tf_republisher: TFRepublisher | None = None) -> None:
         self.access = access
+        self._tf_republisher = tf_republisher  # the core's guest, closed with the endpoint
         self.envelopes = PublishEnvelopes(self._message_type, self._receive_time)
 
     async def serve(self, websocket: WebSocket) -> None:
@@ -90,7 +92,9 @@ class RosbridgeEndpoint:
             await close_with(websocket, stalled.code, stalled.reason)
 
     def close(self) -> None:
-        """Nothing outlives the connections (each closes its own when it ends)."""
+        """The core stops: tf2_web_republisher's watches end (each connection closes its own)."""
+        if self._tf_republisher is not None:
+            self._tf_republisher.close()
 
     def _message_type(self, topic: str) -> type[Message] | None:
         known = self.access.registry.topic_type(topic)

@@ -122,7 +122,8 @@ class Fragment(RosbridgeOp):
 
 
 def request_body(args: dict[str, Any] | list[Any] | None, request_type: type[Message] | None) -> bytes:
-    """A call's ``args`` as a request body: an object as it is, a list in field order."""
+    """A call's ``args`` as a request body: an object as it is, a list in field order; ROS 1's
+    time fields under ROS 2's names (roslibpy's TFClient sends its timeout ``{secs, nsecs}``)."""
     if args is None:
         return b""
     if isinstance(args, list):
@@ -134,7 +135,7 @@ def request_body(args: dict[str, Any] | list[Any] | None, request_type: type[Mes
         if len(args) > len(names):
             raise Refused(f"{len(args)} args for {len(names)} request fields ({', '.join(names)})")
         args = dict(zip(names, args, strict=False))
-    return json.dumps(args).encode()
+    return ros2_time_names(json.dumps(args), args).encode()
 
 
 def ros2_time_names(text: str, msg: dict[str, Any]) -> str:

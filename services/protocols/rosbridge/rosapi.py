@@ -16,9 +16,9 @@ from collections.abc import Callable
 from typing import Any
 from urllib.parse import urlsplit
 
+import services.protocols.rosbridge.clock as clock
 from services.core.access import CoreAccess
 from services.protocols import ROS_DISTRO
-from services.protocols.rosbridge import clock
 from services.protocols.rosbridge.rosapi_params import RosapiParams
 from services.runtime.actions.names import actions_in_graph
 from services.runtime.service import Service

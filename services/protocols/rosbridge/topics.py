@@ -24,9 +24,9 @@ from dataclasses import dataclass
 from functools import cache
 from typing import Any
 
+import services.protocols.rosbridge.clock as clock
 from services.core.gateway_topic import declared_type
 from services.protocols.ops import Refused
-from services.protocols.rosbridge import clock
 from services.protocols.rosbridge.frames import (
     PublishEnvelopes,
     Status,
