@@ -18,6 +18,7 @@ from typing import Any
 
 from services.protocols.rosbridge.cbor import dumps, message_values
 from services.protocols.rosbridge.png import png_op
+from services.protocols.rosbridge.ros1_times import speaks_ros1, with_ros1_times
 from services.runtime.edge.pump import Encode
 from shared_models import Message
 from shared_models.cdr import codec_of
@@ -101,10 +102,20 @@ class PublishEnvelopes:
 
     def _maker(self, topic: str, compression: str) -> Callable[[str], dict[str, Any] | None]:
         prefix = '{"op":"publish","topic":' + json.dumps(topic) + ',"msg":'
-        if compression == "none":
-            return lambda frame: _text(prefix + frame + "}")
-        if compression == "png":
-            return lambda frame: _text(png_op(prefix + frame + "}"))
+        if compression in ("none", "png"):
+            ros1: list[bool] = []  # decided at the first frame of a known type (:mod:`.ros1_times`)
+
+            def make_text(frame: str) -> dict[str, Any]:
+                if not ros1:
+                    cls = self._message_type(topic)
+                    if cls is not None:
+                        ros1.append(speaks_ros1(cls))
+                if ros1 and ros1[0]:
+                    frame = with_ros1_times(frame)
+                text = prefix + frame + "}"
+                return _text(png_op(text) if compression == "png" else text)
+
+            return make_text
         raw = compression == "cbor-raw"
 
         def make_cbor(frame: str) -> dict[str, Any] | None:

@@ -140,7 +140,8 @@ def request_body(args: dict[str, Any] | list[Any] | None, request_type: type[Mes
 
 def ros2_time_names(text: str, msg: dict[str, Any]) -> str:
     """A published message's JSON with ROS 1's time fields (``{"secs": 0, "nsecs": 0}``, as
-    roslibpy's and roslibjs's actionlib stamp a goal) under ROS 2's names (``sec``, ``nanosec``);
+    roslibpy's and roslibjs's actionlib stamp a goal) under ROS 2's names (``sec``, ``nanosec``),
+    or left out where ROS 2's are there too;
     ``text`` (``msg`` as JSON) as it is when it has none, which a substring test tells cheaply."""
     if '"secs"' not in text and '"nsecs"' not in text:
         return text
@@ -150,8 +151,11 @@ def ros2_time_names(text: str, msg: dict[str, Any]) -> str:
             return [renamed(item) for item in value]
         if not isinstance(value, dict):
             return value
-        if ("secs" in value or "nsecs" in value) and "sec" not in value and "nanosec" not in value:
-            value = {_ROS1_TIME.get(key, key): item for key, item in value.items()}
+        if "secs" in value or "nsecs" in value:
+            if "sec" not in value and "nanosec" not in value:
+                value = {_ROS1_TIME.get(key, key): item for key, item in value.items()}
+            else:  # both names, as the core sends ROS 1's types (:mod:`.ros1_times`) and a client echoes
+                value = {key: item for key, item in value.items() if key not in _ROS1_TIME}
         return {key: renamed(item) for key, item in value.items()}
 
     return json.dumps(renamed(msg))
