@@ -49,7 +49,7 @@ def _topics(bridge: Bridge) -> set[str]:
 
 
 async def test_roslibpys_tf_client_reads_the_topic_republish_tfs_answers(bridge: Bridge, carrot: BackgroundProcess) -> None:
-    client = await bridge.client("roslibpy_round_trips.py", bridge.rosbridge_url, "tf")
+    client = await bridge.client("roslibpy_client.py", bridge.rosbridge_url, "tf")
     assert (await client.line())["connected"] is True
     got = await client.expect("carrots")
     carrots = got["carrots"]
@@ -64,11 +64,11 @@ async def test_roslibpys_tf_client_reads_the_topic_republish_tfs_answers(bridge:
     assert not _reads(bridge, tf_republisher.NODE, "/tf")
 
 
-@pytest.mark.parametrize("scenario", ["ros1", "ros2"])
+@pytest.mark.parametrize("scenario", ["tf_ros1", "tf_ros2"])
 async def test_roslibjs_tf_clients_follow_frames_through_either_action(
     bridge: Bridge, carrot: BackgroundProcess, scenario: str
 ) -> None:
-    client = await bridge.client("roslibjs_tf.mjs", bridge.rosbridge_url, scenario)
+    client = await bridge.client("roslibjs_client.mjs", bridge.rosbridge_url, scenario)
     assert (await client.line())["connected"] is True
     got = await client.expect("carrots")
     assert all(_on_the_circle(c) for c in got["carrots"])
