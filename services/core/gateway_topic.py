@@ -42,13 +42,20 @@ def declared_type(type_name: str | None) -> type[Message] | None:
 class GatewayTopic:
     """One client's view of one topic through the core node."""
 
-    def __init__(self, core: CoreNode, registry: Registry, name: str, declared: type[Message] | None) -> None:
+    def __init__(
+        self, core: CoreNode, registry: Registry, name: str, declared: type[Message] | None, *, latched: bool = True
+    ) -> None:
         self.name = name
         self._core = core
         self._registry = registry
         self._declared = declared
+        self._latched = latched  # whether what this client publishes is latched (see CoreNode)
         self._type: type[Message] | None = None  # fixed by the first valid frame
         self._endpoint: TopicEndpoint | None = None  # the core's, once this client publishes
+
+    @property
+    def latched(self) -> bool:
+        return self._latched
 
     # -- reading and publishing (what every client of the core does) ----------------------------
 
@@ -56,7 +63,7 @@ class GatewayTopic:
         """Frames on the topic go to ``outbox`` from now on; returns the latched frame, if any
         (in the outbox's encoding)."""
         endpoint = self._core.start_reading(self.name, outbox)
-        if endpoint.latest is not None and (endpoint.publishing or self._registry.is_latched(self.name)):
+        if endpoint.latest is not None and (endpoint.latched or self._registry.is_latched(self.name)):
             return endpoint.latest.get(outbox.encoding)
         return None
 
@@ -68,7 +75,7 @@ class GatewayTopic:
         advertise), so subscribers link to the core while the client gets ready."""
         if self._endpoint is None:
             msg_type = self.message_type()
-            self._endpoint = self._core.start_publishing(self.name, msg_type)
+            self._endpoint = self._core.start_publishing(self.name, msg_type, latched=self._latched)
             self._type = msg_type
 
     def publish(self, frame: Frame, sender: Outbox | None) -> bool:
@@ -82,7 +89,7 @@ class GatewayTopic:
         endpoint = self._endpoint
         first = endpoint is None
         if endpoint is None:
-            endpoint = self._endpoint = self._core.start_publishing(self.name, msg_type)
+            endpoint = self._endpoint = self._core.start_publishing(self.name, msg_type, latched=self._latched)
             self._type = msg_type
         endpoint.dispatch(msg, endpoint.frames_of(msg, frame), sender)
         return first
@@ -91,7 +98,7 @@ class GatewayTopic:
         """This client publishes no more (the topic lingers, latched, as for a closed socket)."""
         if self._endpoint is not None:
             self._endpoint = None
-            self._core.stop_publishing(self.name)
+            self._core.stop_publishing(self.name, latched=self._latched)
 
     def message_type(self) -> type[Message]:
         """The type a frame published here must have; FrameRejected(1008) when none is known."""
