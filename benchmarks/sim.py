@@ -40,7 +40,7 @@ _SETTLE_S = 0.5  # wall seconds: at tens of times real time the boxes have long 
 
 def measure_bare(*, boxes: int, steps: int, seed: int = 1) -> dict[str, float]:
     """RTF of the bare PyBullet loop and of the world without the node, in a worker process."""
-    with Worker("sim-bare", "benchmarks.sim_worker", "--boxes", str(boxes), "--steps", str(steps), "--seed", str(seed)) as worker:
+    with Worker("sim-bare", "benchmarks.world_speed_worker", "drone", "--count", str(boxes), "--steps", str(steps), "--seed", str(seed)) as worker:
         reading = worker.expect("RESULT", 120.0)
     return {
         "bare_rtf": reading["bare_steps_per_s"] / PHYSICS_HZ,
@@ -60,7 +60,7 @@ def sim_argv(port: int, *, seed: int, boxes: int = 8, world_args: list[str] | No
 def measure_robot_bare(*, steps: int, seed: int = 1) -> dict[str, float]:
     """RTF of the robot world's bare loop (with the same rays) and of the world without the
     node, and each one's milliseconds per scan, in a worker process."""
-    with Worker("robot-bare", "benchmarks.robot_worker", "--steps", str(steps), "--seed", str(seed)) as worker:
+    with Worker("robot-bare", "benchmarks.world_speed_worker", "robot", "--steps", str(steps), "--seed", str(seed)) as worker:
         reading = worker.expect("RESULT", 120.0)
     return {
         "bare_rtf": reading["bare_steps_per_s"] / ROBOT_PHYSICS_HZ,

@@ -14,7 +14,7 @@ from typing import ClassVar, Self
 
 import pybullet as p
 
-__all__ = ["STANDARD_GRAVITY_M_S2", "BulletWorld"]
+__all__ = ["STANDARD_GRAVITY_M_S2", "BulletWorld", "create_ground_plane"]
 
 STANDARD_GRAVITY_M_S2 = 9.81
 
@@ -86,3 +86,20 @@ class BulletWorld:
         p.setGravity(0.0, 0.0, -self.GRAVITY_M_S2, physicsClientId=client)
         p.setTimeStep(1.0 / self.PHYSICS_HZ, physicsClientId=client)
         return client
+
+
+def create_ground_plane(
+    client: int, *, drawn_half_size_m: float, drawn_thickness_m: float, rgba: tuple[float, float, float, float]
+) -> int:
+    """An infinite static plane at z = 0 (what bodies stand on), drawn as a square tile of
+    ``drawn_half_size_m`` whose top is the plane: every world has one."""
+    shape = p.createCollisionShape(p.GEOM_PLANE, physicsClientId=client)
+    half_thickness = drawn_thickness_m / 2.0
+    visual = p.createVisualShape(
+        p.GEOM_BOX,
+        halfExtents=(drawn_half_size_m, drawn_half_size_m, half_thickness),
+        visualFramePosition=(0.0, 0.0, -half_thickness),
+        rgbaColor=rgba,
+        physicsClientId=client,
+    )
+    return p.createMultiBody(0.0, shape, visual, physicsClientId=client)

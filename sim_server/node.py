@@ -15,14 +15,7 @@ from typing import Any, NoReturn
 from pydantic import ValidationError
 
 from services.runtime import spin
-from sim_server.settings import (
-    MAX_CAMERA_HEIGHT,
-    MAX_CAMERA_RATE_HZ,
-    MAX_CAMERA_WIDTH,
-    MIN_CAMERA_RATE_HZ,
-    MIN_CAMERA_SIDE,
-    SimSettings,
-)
+from sim_server.settings import CAMERA_FLAGS, SimSettings
 from sim_server.worlds import (
     WORLDS,
     UnknownWorld,
@@ -46,12 +39,8 @@ def _parser() -> argparse.ArgumentParser:
     parser.add_argument("--speed", help="times real time, or 'max' (default 1)")
     for option in world_options().values():
         parser.add_argument(option.flag, help=f"{option.world} world: {option.description}")
-    parser.add_argument("--camera-width", help=f"camera image width, {MIN_CAMERA_SIDE}-{MAX_CAMERA_WIDTH} pixels (default 320)")
-    parser.add_argument("--camera-height", help=f"camera image height, {MIN_CAMERA_SIDE}-{MAX_CAMERA_HEIGHT} pixels (default 240)")
-    parser.add_argument(
-        "--camera-rate",
-        help=f"camera frames a second while watched, {MIN_CAMERA_RATE_HZ:g}-{MAX_CAMERA_RATE_HZ:g} (default 5)",
-    )
+    for flag, text in CAMERA_FLAGS.items():
+        parser.add_argument(flag, help=text)
     return parser
 
 

@@ -15,6 +15,7 @@ from pydantic import Field, ValidationError, field_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 __all__ = [
+    "CAMERA_FLAGS",
     "MAX_CAMERA_HEIGHT",
     "MAX_CAMERA_RATE_HZ",
     "MAX_CAMERA_WIDTH",
@@ -29,6 +30,13 @@ MAX_CAMERA_WIDTH = 640
 MAX_CAMERA_HEIGHT = 480
 MIN_CAMERA_RATE_HZ = 0.1
 MAX_CAMERA_RATE_HZ = 30.0
+
+CAMERA_FLAGS = {
+    "--camera-width": f"camera image width, {MIN_CAMERA_SIDE}-{MAX_CAMERA_WIDTH} pixels (default 320)",
+    "--camera-height": f"camera image height, {MIN_CAMERA_SIDE}-{MAX_CAMERA_HEIGHT} pixels (default 240)",
+    "--camera-rate": f"camera frames a second while watched, {MIN_CAMERA_RATE_HZ:g}-{MAX_CAMERA_RATE_HZ:g} (default 5)",
+}
+"""Every world's camera flags and their help (the fields below check them)."""
 
 
 def draw_seed() -> int:

@@ -13,7 +13,7 @@ import asyncio
 import os
 from typing import Any
 
-from services.cli.arguments import known_type, ros_name
+from services.cli.arguments import add_verb, known_type_of, ros_name
 from services.cli.core_client import get_json, node_settings
 from services.cli.errors import CliError
 from services.cli.formatting import message_from, to_yaml
@@ -28,21 +28,18 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     action = subparsers.add_parser("action", help="list, inspect and send goals to actions")
     verbs = action.add_subparsers(dest="verb", required=True, metavar="VERB")
 
-    p = verbs.add_parser("list", help="list the actions of the running system")
+    p = add_verb(verbs, "list", _list, "list the actions of the running system")
     p.add_argument("-t", "--show-types", action="store_true", help="show each action's type")
     p.add_argument("-a", "--all", action="store_true", help="also Skydeck's own (tf2_web_republisher's, for rosbridge clients)")
-    p.set_defaults(func=_list)
 
-    p = verbs.add_parser("info", help="the servers and clients of an action")
+    p = add_verb(verbs, "info", _info, "the servers and clients of an action")
     p.add_argument("action", help="e.g. /fibonacci")
-    p.set_defaults(func=_info)
 
-    p = verbs.add_parser("send_goal", help="send a goal and wait for its result (GOAL as YAML or JSON)")
+    p = add_verb(verbs, "send_goal", _send_goal, "send a goal and wait for its result (GOAL as YAML or JSON)")
     p.add_argument("action", help="e.g. /fibonacci")
     p.add_argument("type", help="e.g. example_interfaces/action/Fibonacci")
     p.add_argument("goal", nargs="?", default="{}", help='e.g. "{order: 5}"')
     p.add_argument("-f", "--feedback", action="store_true", help="print the goal's feedback as it comes")
-    p.set_defaults(func=_send_goal)
 
 
 def _actions() -> dict[str, ActionInGraph]:
@@ -79,9 +76,7 @@ def _send_goal(args: argparse.Namespace) -> int:
     from shared_models import ActionType
 
     name = ros_name(args.action)
-    action_type = known_type(args.type)
-    if not issubclass(action_type, ActionType):
-        raise CliError(f"{action_type.__ros_type__} is not an action type: see `skydeck interface list -a`")
+    action_type = known_type_of(args.type, ActionType, "is not an action type: see `skydeck interface list -a`")
     serving = _actions().get(name)
     if serving is not None and serving.type and serving.type != action_type.__ros_type__:
         raise CliError(f"{name} is an action of type {serving.type}, not {action_type.__ros_type__}")

@@ -5,11 +5,14 @@ from __future__ import annotations
 import argparse
 import math
 import os
+from collections.abc import Callable
 from pathlib import Path
 
 from services.cli.errors import CliError
 
 __all__ = [
+    "add_verb",
+    "known_type_of",
     "known_type",
     "node_name",
     "positive_float",
@@ -18,6 +21,19 @@ __all__ = [
     "use_current_workspace",
     "writable_file",
 ]
+
+
+def add_verb(
+    verbs: argparse._SubParsersAction[argparse.ArgumentParser], name: str, run: Callable[[argparse.Namespace], int],
+    help: str, *positionals: str,
+) -> argparse.ArgumentParser:
+    """The verb ``name`` running ``run(args)``, with its plain positional arguments; the caller adds
+    its options (and any positional with a help of its own) to what it returns."""
+    verb = verbs.add_parser(name, help=help)
+    for positional in positionals:
+        verb.add_argument(positional)
+    verb.set_defaults(func=run)
+    return verb
 
 
 def positive_int(text: str) -> int:
@@ -95,6 +111,15 @@ def known_type(text: str):  # type: ignore[no-untyped-def]
         if _learn_from_core(text):
             return known_type(text)
         raise CliError(str(error).splitlines()[0]) from None
+
+
+def known_type_of(text: str, kind: type, otherwise: str):  # type: ignore[no-untyped-def]
+    """The type named ``text`` if it is a ``kind`` (Message, ServiceType, ActionType); else the one
+    line ``TEXT OTHERWISE`` (what it is instead and which verb takes it)."""
+    found = known_type(text)
+    if not issubclass(found, kind):
+        raise CliError(f"{text} {otherwise}")
+    return found
 
 
 def use_current_workspace() -> None:

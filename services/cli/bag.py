@@ -13,7 +13,7 @@ import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from services.cli.arguments import known_type, positive_float, ros_name
+from services.cli.arguments import add_verb, known_type, positive_float, ros_name
 from services.cli.core_client import core_url, get_json, node_settings
 from services.cli.errors import CliError
 
@@ -40,11 +40,10 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     )
     p.set_defaults(func=_record)
 
-    p = verbs.add_parser("info", help="duration, times, message count and topics of a recording")
+    p = add_verb(verbs, "info", _info, "duration, times, message count and topics of a recording")
     p.add_argument("file", metavar="FILE")
-    p.set_defaults(func=_info)
 
-    p = verbs.add_parser("play", help="publish a recording again, with its timing")
+    p = add_verb(verbs, "play", _play, "publish a recording again, with its timing")
     p.add_argument("file", metavar="FILE")
     p.add_argument("-r", "--rate", type=positive_float, default=1.0, help="speed factor (default 1)")
     p.add_argument("-l", "--loop", action="store_true", help="play again from the start when done, until Ctrl-C")
@@ -54,7 +53,6 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.add_argument("--clock-hz", type=positive_float, default=100.0, metavar="HZ", help="/clock rate when the recording has none (default 100)")
     p.add_argument("--remap", action="append", default=[], metavar="FROM:=TO", help="publish topic FROM as TO (repeatable)")
     p.add_argument("--wait-for-subscribers", action="store_true", help="start once every topic has a subscriber")
-    p.set_defaults(func=_play)
 
 
 def _seconds(text: str) -> float:

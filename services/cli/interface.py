@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from services.cli.arguments import known_type, use_current_workspace
+from services.cli.arguments import add_verb, known_type, use_current_workspace
 from services.cli.formatting import to_yaml
 
 __all__ = ["add_parser"]
@@ -19,12 +19,9 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     kind.add_argument("-s", "--only-srvs", action="store_true", help="only service types")
     kind.add_argument("-a", "--only-actions", action="store_true", help="only action types")
     p.set_defaults(func=_list)
-    p = verbs.add_parser("show", help="show a type's fields, nested types indented")
+    p = add_verb(verbs, "show", _show, "show a type's fields, nested types indented")
     p.add_argument("type", help="e.g. geometry_msgs/msg/PointStamped")
-    p.set_defaults(func=_show)
-    p = verbs.add_parser("proto", help="a default instance of a message type, as YAML to edit")
-    p.add_argument("type")
-    p.set_defaults(func=_proto)
+    add_verb(verbs, "proto", _proto, "a default instance of a message type, as YAML to edit", "type")
 
 
 # shared_models is imported by each verb, not at the top: every `skydeck` command builds this

@@ -7,7 +7,7 @@ import os
 import signal
 import time
 
-from services.cli.arguments import node_name, positive_float, positive_int
+from services.cli.arguments import add_verb, node_name, positive_float, positive_int
 from services.cli.core_client import error_detail, get, get_json, post_json
 from services.cli.errors import CliError
 from services.cli.formatting import system_name
@@ -20,19 +20,12 @@ __all__ = ["add_parser"]
 def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     node = subparsers.add_parser("node", help="list and inspect nodes")
     verbs = node.add_subparsers(dest="verb", required=True, metavar="VERB")
-    p = verbs.add_parser("list", help="list the running nodes")
-    p.set_defaults(func=_list)
-    p = verbs.add_parser("info", help="URL, pid, publications, subscriptions and services of a node")
-    p.add_argument("node")
-    p.set_defaults(func=_info)
-    p = verbs.add_parser("ping", help="check that a node answers, and how fast")
-    p.add_argument("node")
+    add_verb(verbs, "list", _list, "list the running nodes")
+    add_verb(verbs, "info", _info, "URL, pid, publications, subscriptions and services of a node", "node")
+    p = add_verb(verbs, "ping", _ping, "check that a node answers, and how fast", "node")
     p.add_argument("-c", "--count", type=positive_int, default=1, help="pings to send (default 1)")
     p.add_argument("--timeout", type=positive_float, default=3.0, help="seconds to wait for each answer (default 3)")
-    p.set_defaults(func=_ping)
-    p = verbs.add_parser("kill", help="stop a node for good: its launch does not respawn it")
-    p.add_argument("node")
-    p.set_defaults(func=_kill)
+    add_verb(verbs, "kill", _kill, "stop a node for good: its launch does not respawn it", "node")
 
 
 def _list(args: argparse.Namespace) -> int:

@@ -7,7 +7,7 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-from services.cli.arguments import node_name
+from services.cli.arguments import add_verb, node_name
 from services.cli.core_client import error_detail, get_json, post_json
 from services.cli.errors import CliError
 from services.cli.formatting import to_yaml
@@ -21,37 +21,22 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     param = subparsers.add_parser("param", help="list, get, set, dump and load node parameters")
     verbs = param.add_subparsers(dest="verb", required=True, metavar="VERB")
 
-    p = verbs.add_parser("list", help="the parameter names of a node (of every node without NODE)")
+    p = add_verb(verbs, "list", _list, "the parameter names of a node (of every node without NODE)")
     p.add_argument("node", nargs="?")
     p.add_argument("-t", "--param-type", action="store_true", help="show each parameter's type")
     p.add_argument("--param-prefixes", nargs="+", default=[], metavar="PREFIX", help="only names under these")
-    p.set_defaults(func=_list)
 
-    p = verbs.add_parser("get", help="a parameter's value")
-    p.add_argument("node")
-    p.add_argument("name")
+    p = add_verb(verbs, "get", _get, "a parameter's value", "node", "name")
     p.add_argument("--hide-type", action="store_true", help="print the value only")
-    p.set_defaults(func=_get)
 
-    p = verbs.add_parser("set", help="set a parameter (VALUE as YAML: 0.5, true, robot1, [1, 2])")
-    p.add_argument("node")
-    p.add_argument("name")
-    p.add_argument("value")
-    p.set_defaults(func=_set)
+    add_verb(verbs, "set", _set, "set a parameter (VALUE as YAML: 0.5, true, robot1, [1, 2])", "node", "name", "value")
 
-    p = verbs.add_parser("describe", help="type, description and constraints of parameters")
-    p.add_argument("node")
+    p = add_verb(verbs, "describe", _describe, "type, description and constraints of parameters", "node")
     p.add_argument("names", nargs="+", metavar="name")
-    p.set_defaults(func=_describe)
 
-    p = verbs.add_parser("dump", help="a node's parameters as a ROS 2 params file (YAML)")
-    p.add_argument("node")
-    p.set_defaults(func=_dump)
+    add_verb(verbs, "dump", _dump, "a node's parameters as a ROS 2 params file (YAML)", "node")
 
-    p = verbs.add_parser("load", help="set a node's parameters from a ROS 2 params file")
-    p.add_argument("node")
-    p.add_argument("file")
-    p.set_defaults(func=_load)
+    add_verb(verbs, "load", _load, "set a node's parameters from a ROS 2 params file", "node", "file")
 
 
 def _call(node: str, verb: str, body: dict[str, Any]) -> dict[str, Any]:

@@ -10,7 +10,7 @@ import time
 from websockets.asyncio.client import connect
 from websockets.exceptions import ConnectionClosed, InvalidHandshake
 
-from services.cli.arguments import known_type, positive_float, positive_int, ros_name
+from services.cli.arguments import known_type_of, positive_float, positive_int, ros_name
 from services.cli.core_client import auth_headers, core_url, get_json, ws_url
 from services.cli.errors import CliError
 from services.cli.formatting import message_from, message_view, system_name, to_csv, to_yaml
@@ -130,9 +130,7 @@ def _pub(args: argparse.Namespace) -> int:
     from shared_models import Message
 
     name = ros_name(args.topic)
-    msg_type = known_type(args.type)
-    if not issubclass(msg_type, Message):
-        raise CliError(f"{args.type} is a service type: use `skydeck service call`")
+    msg_type = known_type_of(args.type, Message, "is a service type: use `skydeck service call`")
     msg = message_from(args.data, msg_type)
     topics = {t["name"]: t for t in get_json("/api/graph")["topics"]}
     if name in topics and topics[name]["type"] != msg_type.__ros_type__:

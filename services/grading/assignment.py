@@ -40,6 +40,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 
 from services.grading.criteria import CRITERIA, CriterionSpec, Options
 from shared_models.errors import SkydeckError
+from shared_models.text_files import read_text_file
 
 __all__ = ["Assignment", "AssignmentError", "CriterionUse", "SeedKind", "load_assignment"]
 
@@ -202,12 +203,7 @@ def hidden_seed(secret: str, assignment: str, index: int) -> int:
 
 def load_assignment(path: Path) -> Assignment:
     """Read and check an assignment file; AssignmentError names the file and the field."""
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise AssignmentError(f"{path}: no such assignment file") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise AssignmentError(f"{path}: cannot be read: {error}") from None
+    text = read_text_file(path, "assignment file", lambda reason: AssignmentError(f"{path}: {reason}"))
     try:
         data = yaml.safe_load(text)
     except yaml.YAMLError as error:

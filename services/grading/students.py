@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from shared_models.errors import SkydeckError
+from shared_models.text_files import read_text_file
 
 __all__ = ["INSTRUCTOR", "Found", "RosterError", "Submission", "check_student_name", "find_submissions", "read_roster"]
 
@@ -61,12 +62,7 @@ def _check_names(names: list[tuple[str, str]]) -> list[str]:
 
 def read_roster(path: Path) -> list[str]:
     """The students of a roster file: one name a line; blank lines and what follows ``#`` skipped."""
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise RosterError(f"no roster file {path}") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise RosterError(f"{path}: cannot read the roster: {getattr(error, 'strerror', None) or error}") from None
+    text = read_text_file(path, "roster file", lambda reason: RosterError(f"{path}: {reason}"))
     names = []
     for number, line in enumerate(text.splitlines(), start=1):
         name = line.split("#", 1)[0].strip()

@@ -9,6 +9,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from shared_models.errors import SkydeckError
+from shared_models.text_files import read_text_file
 
 __all__ = ["LaunchError", "LaunchFileError", "read_launch_text"]
 
@@ -45,11 +46,4 @@ class LaunchFileError(LaunchError):
 
 def read_launch_text(path: Path) -> str:
     """The launch file's text; a missing, unreadable or non-UTF-8 file is one ``LaunchFileError``."""
-    try:
-        return path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise LaunchFileError(path, "no such launch file") from None
-    except IsADirectoryError:
-        raise LaunchFileError(path, "is a folder, not a launch file") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise LaunchFileError(path, f"cannot read it: {error}") from None
+    return read_text_file(path, "launch file", lambda reason: LaunchFileError(path, reason))

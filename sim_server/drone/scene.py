@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import pybullet as p
 
+from sim_server.bullet import create_ground_plane
 from sim_server.drone.airframe import Airframe
 from sim_server.drone.boxes import BoxSpawn
 from sim_server.drone.limits import BOX_MASS_KG, BOX_SIZE_M
@@ -34,15 +35,7 @@ _GROUND_VISUAL_HALF_SIZE_M = 100.0
 
 def create_ground(client: int) -> int:
     """An infinite static plane at z = 0 (drawn as a large flat tile)."""
-    shape = p.createCollisionShape(p.GEOM_PLANE, physicsClientId=client)
-    visual = p.createVisualShape(
-        p.GEOM_BOX,
-        halfExtents=(_GROUND_VISUAL_HALF_SIZE_M, _GROUND_VISUAL_HALF_SIZE_M, 0.01),
-        visualFramePosition=(0.0, 0.0, -0.01),
-        rgbaColor=_GROUND_RGBA,
-        physicsClientId=client,
-    )
-    return p.createMultiBody(0.0, shape, visual, physicsClientId=client)
+    return create_ground_plane(client, drawn_half_size_m=_GROUND_VISUAL_HALF_SIZE_M, drawn_thickness_m=0.02, rgba=_GROUND_RGBA)
 
 
 def create_drone(

@@ -18,6 +18,7 @@ import math
 
 import pybullet as p
 
+from sim_server.bullet import create_ground_plane
 from sim_server.robot.layout import Obstacle
 from sim_server.robot.limits import (
     BODY_BOTTOM_M,
@@ -97,16 +98,7 @@ def _collide(client: int, body: int, link: int, group: int, mask: int) -> None:
 
 def create_floor(client: int) -> int:
     """An infinite static plane at z = 0, drawn as a tile a little larger than the room."""
-    shape = p.createCollisionShape(p.GEOM_PLANE, physicsClientId=client)
-    half = ROOM_HALF_SIZE_M + 2.0
-    visual = p.createVisualShape(
-        p.GEOM_BOX,
-        halfExtents=(half, half, 0.005),
-        visualFramePosition=(0.0, 0.0, -0.005),
-        rgbaColor=_FLOOR_RGBA,
-        physicsClientId=client,
-    )
-    floor = p.createMultiBody(0.0, shape, visual, physicsClientId=client)
+    floor = create_ground_plane(client, drawn_half_size_m=ROOM_HALF_SIZE_M + 2.0, drawn_thickness_m=0.01, rgba=_FLOOR_RGBA)
     _collide(client, floor, -1, _FLOOR, _WHEELS | _NEATO)
     return floor
 

@@ -57,7 +57,7 @@ def test_a_bad_roster_is_one_line_naming_the_line(tmp_path: Path, text: str, say
 
 
 def test_a_roster_that_is_not_there(tmp_path: Path) -> None:
-    with pytest.raises(RosterError, match="no roster file"):
+    with pytest.raises(RosterError, match="no such roster file"):
         read_roster(tmp_path / "nope.txt")
 
 
