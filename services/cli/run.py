@@ -23,6 +23,15 @@ def add_parsers(subparsers: argparse._SubParsersAction[argparse.ArgumentParser])
     core = subparsers.add_parser("core", help="run the core: registry, gateway, dashboard (like roscore)")
     _add_server_flags(core, default_port=8000)
     add_endpoint_flags(core)
+    core.add_argument(
+        "--class-tokens",
+        type=Path,
+        metavar="FILE",
+        help="run a class: its tokens file (`name,token` lines, `skydeck class` writes it); docs/security.md",
+    )
+    core.add_argument(
+        "--class-rules", type=Path, metavar="FILE", help="the class's rules: what students share (YAML); docs/security.md"
+    )
     core.set_defaults(func=_core)
 
     run = subparsers.add_parser(
@@ -90,7 +99,8 @@ def _core(args: argparse.Namespace) -> int:
     from services.protocols.settings import CoreProcessSettings
 
     ports = {endpoint.setting: getattr(args, endpoint.setting) for endpoint in ENDPOINTS}
-    serve(CoreProcessSettings.from_flags(**_server_flags(args), **ports))  # flags over SKYDECK_*
+    classroom = {"class_tokens": args.class_tokens, "class_rules": args.class_rules}
+    serve(CoreProcessSettings.from_flags(**_server_flags(args), **ports, **classroom))  # flags over SKYDECK_*
     return 0
 
 

@@ -2,7 +2,8 @@
 
 Topics go through the core node (:class:`~services.core.gateway_topic.GatewayTopic`), service
 calls through the one call path (:class:`~services.core.service_calls.ServiceCalls`), and each
-connection is a guest in the graph (:class:`~services.core.guests.Guests`). The registry is
+connection is a guest in the graph (:class:`~services.core.guests.Guests`), admitted by the
+core's fences (:class:`~services.access.Fences`: what its token may do). The registry is
 read, never written, by endpoints. The core builds it when it starts and gives it to each
 plugin (:mod:`services.core.endpoint_servers`); it knows nothing of the protocols themselves.
 """
@@ -11,6 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from services.access import Fences
 from services.core.core_node import CoreNode
 from services.core.gateway import Gateway
 from services.core.guests import Guests
@@ -31,3 +33,4 @@ class CoreAccess:
     calls: ServiceCalls
     gateway: Gateway
     settings: CoreSettings
+    fences: Fences

@@ -2,7 +2,9 @@
 
 When a token is set, every service call and every publish needs it, as
 ``Authorization: Bearer TOKEN`` or, for browsers' WebSockets, ``?token=TOKEN``. Reading topics
-and the registry stays open. Tokens are compared in constant time and never logged.
+and the registry stays open. Tokens are compared in constant time and never logged. (A node
+checks its one token here; the core asks its fences, :mod:`services.access`, which also know
+a class's tokens.)
 """
 
 from __future__ import annotations
@@ -11,8 +13,7 @@ import hmac
 import logging
 import re
 
-from starlette.exceptions import HTTPException
-from starlette.requests import HTTPConnection, Request
+from starlette.requests import HTTPConnection
 
 from services.runtime.wire import TOKEN_QUERY_PARAMETER
 
@@ -23,7 +24,6 @@ __all__ = [
     "RedactTokens",
     "bearer_token",
     "presented_token",
-    "token_required",
     "token_is_valid",
     "token_matches",
 ]
@@ -50,12 +50,6 @@ def presented_token(connection: HTTPConnection) -> str:
 def token_matches(expected: str, connection: HTTPConnection) -> bool:
     """Whether ``connection`` may act; always true when no token is configured."""
     return token_is_valid(expected, presented_token(connection))
-
-
-def token_required(request: Request) -> None:
-    """A route dependency of the core's writes: 401 without the core's token (``app.state.settings``)."""
-    if not token_matches(request.app.state.settings.token, request):
-        raise HTTPException(401, NOT_AUTHORISED)
 
 
 def token_is_valid(expected: str, presented: str) -> bool:

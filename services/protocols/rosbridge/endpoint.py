@@ -14,8 +14,13 @@ by the core for it, so nodes and ``curl`` call it like any other.
 A bad frame gets a ``status`` (level ``error``, the op's ``id``) and nothing else happens;
 ``set_level`` asks for ``warning`` and ``info`` statuses too, or ``none``. Statuses are replies
 to a client's own ops, never sent otherwise. A client that stops reading is closed with 4001
-(see :mod:`services.protocols.session`). ``auth`` with the token as ``mac`` unlocks writing
-on a connection opened without it.
+(see :mod:`services.protocols.session`). ``auth`` with a token as ``mac`` (the process token, or
+a class token) makes the connection act as that token's subject.
+
+Every op is fenced for the connection's token (:mod:`services.access`): ``subscribe``,
+``advertise``, ``publish`` and ``advertise_service`` refused get a ``status`` error, a refused
+``call_service`` its ``service_response`` with ``result: false``; a student's connection that
+publishes over their rate is closed with 4002.
 """
 
 from __future__ import annotations
@@ -30,6 +35,7 @@ from typing import Any
 from pydantic import ValidationError
 from starlette.websockets import WebSocket
 
+from services.access import Verb
 from services.core.access import CoreAccess
 from services.core.gateway_topic import declared_type
 from services.protocols.ops import JsonOps, Refused, describe_error
@@ -51,7 +57,6 @@ from services.protocols.rosbridge.ops import (
     request_body,
 )
 from services.protocols.session import ClientSession, incoming
-from services.runtime.auth import token_is_valid
 from services.runtime.edge.frames import FrameRejected, close_with
 from services.runtime.edge.pump import Encode
 from services.runtime.errors import ServiceUnavailableError
@@ -182,6 +187,7 @@ class _Connection:
 
     async def _subscribe(self, op: Subscribe) -> None:
         name = resolve_name(op.topic)
+        self._session.visitor.check(Verb.READ, name)  # before anything of the op is kept
         if op.type:
             declared = declared_type(op.type)
             known = self._endpoint.access.registry.topic_type(name)
@@ -286,8 +292,8 @@ class _Connection:
     # -- services: hosting ----------------------------------------------------------------------
 
     async def _advertise_service(self, op: AdvertiseService) -> None:
-        self._session.check_may_write()
         name = resolve_name(op.service)
+        self._session.visitor.check(Verb.SERVE, name)
         srv = get_interface(op.type)
         if not (isinstance(srv, type) and issubclass(srv, ServiceType)):
             raise Refused(f"{op.type} is a message type, not a service type")
@@ -324,10 +330,8 @@ class _Connection:
         self._level = _LEVELS.index(op.level)
 
     async def _auth(self, op: Auth) -> None:
-        if not token_is_valid(self._settings.token, op.mac):
-            raise Refused("auth: the mac is not this core's token (SKYDECK_TOKEN)")
-        self._session.token = op.mac
-        await self._status("info", "authenticated: this connection may publish and call services", op.id)
+        self._session.authenticate(op.mac)
+        await self._status("info", f"authenticated as {self._session.visitor.subject}", op.id)
 
     async def _fragment(self, op: Fragment) -> None:
         whole = self._fragments.add(op)

@@ -16,6 +16,7 @@ from collections.abc import Callable
 from typing import Any
 
 from services.core.access import CoreAccess
+from services.core.service_calls import CALLER
 from services.protocols import ROS_DISTRO
 from services.protocols.parameters import (
     ParameterError,
@@ -130,8 +131,10 @@ class _Rosapi:
     def __init__(self, access: CoreAccess) -> None:
         self._access = access
         self._registry = access.registry
+        # Parameters are read and set with the rights of whoever called rosapi (CALLER: a student
+        # reaches the parameters of their own nodes only), not with the core's.
         self._parameters = Parameters(
-            access.registry, lambda service, body: access.calls.call(service, body, token=access.settings.token)
+            access.registry, lambda service, body: access.calls.call(service, body, caller=CALLER.get())
         )
 
     def _graph(self) -> dict[str, Any]:
