@@ -11,6 +11,7 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import logging
+import secrets
 import time
 
 from pydantic import ValidationError
@@ -75,8 +76,9 @@ async def serve_session(websocket: WebSocket, registry: Registry, fences: Fences
             await _refuse(websocket, writer, refusal)
             return
         name = first.node.name
-        outgoing.put_nowait(RegisteredFrame())
-        replaced = registry.register(first.node, send)
+        key = secrets.token_urlsafe(32)  # this session's: calls the core admitted reach the node with it
+        outgoing.put_nowait(RegisteredFrame(key=key))
+        replaced = registry.register(first.node, send, key=key)
         if replaced is not None:
             replaced.inbox(RejectedFrame(reason=f"a newer node took the name {name} (pid {first.node.pid})"))
         logger.info("node %s registered from %s (pid %d)", name, first.node.url, first.node.pid)

@@ -60,14 +60,16 @@ def token_is_valid(expected: str, presented: str) -> bool:
 
 
 _SECRETS = re.compile(r"(?i)(authorization:\s*(?:bearer\s+)?|[?&]token=)[^\s&]+")
+_KEYS = re.compile(r'("key":\s*")[^"]*')  # a session's key in a logged frame (RegisteredFrame)
 
 
 class RedactTokens(logging.Filter):
-    """Replaces the values of ``Authorization`` headers and ``token=`` queries with ``***``."""
+    """Replaces the values of ``Authorization`` headers, ``token=`` queries and a session's
+    ``"key"`` with ``***``."""
 
     def filter(self, record: logging.LogRecord) -> bool:
         text = record.getMessage()
-        redacted = _SECRETS.sub(r"\1***", text)
+        redacted = _KEYS.sub(r"\1***", _SECRETS.sub(r"\1***", text))
         if redacted != text:
             record.msg, record.args = redacted, None
         return True

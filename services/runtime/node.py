@@ -339,6 +339,7 @@ class Node(ParametersMixin):
             describe=self._participant.describe,
             stats=self._participant.published_counts,
             on_publishers=self._participant.set_publishers,
+            on_key=self._app.accept_core_key,
             token=self.settings.token,
         )
         self._spawn(self._session.run())
