@@ -342,8 +342,9 @@ class Connection:
 
 def _shown(visitor: Pass, verb: Verb, name: str) -> bool:
     """Whether a client is shown a channel or service: unless its token may never use it (a
-    student's, outside their fences); without a token, it is shown (a token would open it)."""
-    return not isinstance(visitor.refusal(verb, name), Forbidden)
+    student's, outside their fences); without a token, it is shown (a token would open it), and
+    so is a service whose fence depends on the request (the node a kill_node names: ``name`` "")."""
+    return not name or not isinstance(visitor.refusal(verb, name), Forbidden)
 
 
 def _clock_ns(frame: str, previous: int) -> int:

@@ -12,7 +12,14 @@ from pathlib import Path
 import pytest
 
 import services.access.tokens as tokens_module
-from services.access import INSTRUCTOR, ClassTokensError, TokenSet, make_class_tokens, read_tokens, write_tokens
+from services.access import (
+    INSTRUCTOR,
+    ClassTokensError,
+    TokenSet,
+    make_class_tokens,
+    read_tokens,
+    write_tokens,
+)
 
 pytestmark = pytest.mark.timeout(30)
 
