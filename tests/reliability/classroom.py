@@ -42,7 +42,7 @@ class World(Node):
         self.commands: dict[str, list[Twist]] = {student: [] for student in STUDENTS}
         self.resets = 0
         self.ticks = 0
-        self._clock = self.create_publisher(Time, "/clock", 10)
+        self.clock_publisher = self.create_publisher(Time, "/clock", 10)
         for student in STUDENTS:
             scan = self.create_publisher(String, f"/{student}/scan", 1, latched=True)
             scan.publish(String(data=f"{student}'s scan"))
@@ -57,7 +57,7 @@ class World(Node):
 
     def _tick(self) -> None:
         self.ticks += 1
-        self._clock.publish(Time(sec=self.ticks // 50, nanosec=(self.ticks % 50) * 20_000_000))
+        self.clock_publisher.publish(Time(sec=self.ticks // 50, nanosec=(self.ticks % 50) * 20_000_000))
 
 
 class Launch(Node):
