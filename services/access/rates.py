@@ -15,7 +15,7 @@ connections go on as long as they stay within the rate. Service calls waiting fo
 bounded too, so a student's hung service cannot pile up the core's memory.
 
 Only students are limited; the instructor and the process token are not (the simulator and the
-instructor's tools). The per-message cost is one clock read and a little arithmetic.
+instructor's tools). A message costs a counter; the clock is read every few messages.
 """
 
 from __future__ import annotations
@@ -29,6 +29,9 @@ from shared_models.errors import SkydeckError
 
 __all__ = ["Bucket", "RateLimited", "RateLimits"]
 
+_monotonic = time.monotonic  # a global's lookup, not a module attribute's
+_SETTLE_EVERY = 16  # messages counted between two reads of the clock, at most
+
 
 class RateLimited(SkydeckError):
     """A subject sent more than its rate allows, or has too many calls waiting (HTTP 429, close 4002)."""
@@ -40,7 +43,10 @@ class RateLimited(SkydeckError):
 class Bucket:
     """One subject's allowance: messages and bytes, refilled continuously; calls in flight."""
 
-    __slots__ = ("_bytes", "_bytes_per_s", "_calls", "_last", "_max_calls", "_messages", "_messages_per_s", "name")
+    __slots__ = (
+        "_bytes", "_bytes_per_s", "_calls", "_last", "_max_calls", "_messages", "_messages_per_s",
+        "_settle_bytes", "_settle_messages", "_unsettled", "_unsettled_bytes", "name",
+    )  # fmt: skip
 
     def __init__(self, name: str, messages_per_s: float, bytes_per_s: float, calls_in_flight: int) -> None:
         self.name = name
@@ -48,17 +54,39 @@ class Bucket:
         self._bytes_per_s = bytes_per_s
         self._messages = messages_per_s  # a full second's allowance to start with
         self._bytes = bytes_per_s
-        self._last = time.monotonic()
+        self._last = _monotonic()
         self._max_calls = calls_in_flight
         self._calls = 0
+        # Every message a student publishes is counted, but the clock is read and the bucket
+        # settled every few messages (or bytes) only: a message costs a counter, and a flood is
+        # still caught within an eighth of a second's allowance.
+        self._unsettled = 0
+        self._unsettled_bytes = 0
+        self._settle_messages = max(1, min(_SETTLE_EVERY, int(messages_per_s / 8)))
+        self._settle_bytes = max(1.0, bytes_per_s / 64)
 
     def spend(self, size: int) -> None:
         """Count one message of ``size`` bytes; RateLimited once over the rate."""
-        now = time.monotonic()
+        self._unsettled += 1
+        self._unsettled_bytes += size
+        if self._unsettled >= self._settle_messages or self._unsettled_bytes >= self._settle_bytes:
+            self._settle()
+
+    def _settle(self) -> None:
+        now = _monotonic()
         elapsed = now - self._last
         self._last = now
-        messages = min(self._messages_per_s, self._messages + elapsed * self._messages_per_s) - 1.0
-        data = min(self._bytes_per_s, self._bytes + elapsed * self._bytes_per_s) - size
+        messages = self._messages + elapsed * self._messages_per_s
+        if messages > self._messages_per_s:
+            messages = self._messages_per_s
+        data = self._bytes + elapsed * self._bytes_per_s
+        if data > self._bytes_per_s:
+            data = self._bytes_per_s
+        # What overflows is refused and not charged (its connection is shed; a call answered 429).
+        self._messages, self._bytes = messages, data
+        messages -= self._unsettled
+        data -= self._unsettled_bytes
+        self._unsettled = self._unsettled_bytes = 0
         if messages < 0.0:
             raise RateLimited(
                 f"rate limit: {self.name} sent over {self._messages_per_s:g} messages/s through the core "
@@ -69,8 +97,7 @@ class Bucket:
                 f"rate limit: {self.name} sent over {self._bytes_per_s:g} bytes/s through the core "
                 "(SKYDECK_STUDENT_BYTES_PER_S); send smaller or fewer messages"
             )
-        self._messages = messages
-        self._bytes = data
+        self._messages, self._bytes = messages, data
 
     @contextlib.contextmanager
     def calling(self) -> Iterator[None]:

@@ -45,6 +45,7 @@ class Settings:
     plot_throughput_s: float = 1.5
     bag_repetitions: int = 1
     bag_window_s: float = 2.0
+    fence_messages: int = 20_000
 
 
 QUICK = Settings(
@@ -96,6 +97,7 @@ class Suite:
             self._viewers(),
             self._rosbridge(),
             self._bag(),
+            self._fences(),
         ]
         if self.plots:
             families += [self._throughput_by_size(), self._rtf_by_boxes()]
@@ -500,6 +502,28 @@ class Suite:
 
         return Family("registry", trials, self.settings.startup_repetitions, summarise,
                       rows=("registry_200_nodes", "registry_time_per_node"))  # fmt: skip
+
+    def _fences(self) -> Family:
+        from services.bench.fences import measure_fences, spend_ns
+
+        messages = self.settings.fence_messages
+        trials = [
+            Trial(mode, f"{messages} messages through a core, {label}", lambda mode=mode: measure_fences(messages, mode))  # type: ignore[misc]
+            for mode, label in (("open", "no class"), ("class", "a student's in a class"))
+        ]
+
+        def summarise(readings: Readings) -> list[Result]:
+            fenced, open_ = median_of(readings["class"], "us_per_message"), median_of(readings["open"], "us_per_message")
+            row = Result("fence_check_per_message", fenced, "us", "the same through a core with no class", open_,
+                         target="<= 1.1x (decided per connection; per message only the rate count)",
+                         samples=[r["us_per_message"] for r in readings["class"]],
+                         detail={"what": "the core's CPU per message a student publishes through it (native socket)",
+                                 "rate_count_ns": round(spend_ns(), 1),
+                                 "reference_samples": [r["us_per_message"] for r in readings["open"]]})
+            row.met = row.ratio is not None and row.ratio <= 1.1
+            return [row]  # fmt: skip
+
+        return Family("fences", trials, self.settings.topic_repetitions, summarise, rows=("fence_check_per_message",))
 
     def _startup(self) -> Family:
         from services.bench.startup import measure_startup

@@ -59,6 +59,7 @@ class GatewayTopic:
         self._type: type[Message] | None = None  # fixed by the first valid frame
         self._endpoint: TopicEndpoint | None = None  # the core's, once this client publishes
         self._visitor = None if visitor is None or visitor.unlimited else visitor  # None: nothing to check
+        self._bucket = None if self._visitor is None else self._visitor.bucket  # a student's rate, per frame
         self._may_publish = self._visitor is None  # decided at the first publish
 
     # -- reading and publishing (what every client of the core does) ----------------------------
@@ -99,9 +100,8 @@ class GatewayTopic:
         """
         if not self._may_publish:
             self._admit_publishing()
-        visitor = self._visitor
-        if visitor is not None and visitor.bucket is not None:
-            visitor.bucket.spend(len(frame))
+        if self._bucket is not None:
+            self._bucket.spend(len(frame))
         msg_type = self._type or self.message_type()
         msg = decode(frame, msg_type, msg_type.__ros_type__)  # before publishing: a bad first frame opens nothing
         endpoint = self._endpoint

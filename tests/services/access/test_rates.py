@@ -23,7 +23,7 @@ class Clock:
 @pytest.fixture
 def clock(monkeypatch: pytest.MonkeyPatch) -> Clock:
     fake = Clock()
-    monkeypatch.setattr(rates.time, "monotonic", fake)
+    monkeypatch.setattr(rates, "_monotonic", fake)
     return fake
 
 
@@ -79,3 +79,16 @@ def test_calls_waiting_at_once_are_bounded() -> None:
     assert bucket.calls_in_flight == 0
     with bucket.calling():
         pass
+
+
+def test_the_clock_is_read_every_few_messages_and_a_flood_is_still_caught_within_them(clock: Clock, monkeypatch: pytest.MonkeyPatch) -> None:
+    bucket = RateLimits(messages_per_s=200, bytes_per_s=1e9, calls_in_flight=2).bucket("alice")
+    reads = []
+    monkeypatch.setattr(rates, "_monotonic", lambda: reads.append(1) or clock.now)
+    passed = 0
+    with pytest.raises(RateLimited):
+        while True:
+            bucket.spend(10)
+            passed += 1
+    assert 200 - 16 <= passed < 200 + 16  # caught within one settling's count of messages
+    assert len(reads) <= passed // 16 + 2  # a clock read per 16 messages, not per message
