@@ -12,6 +12,7 @@ dashboard its view.
 
 from __future__ import annotations
 
+import logging
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Depends, HTTPException, Request
@@ -26,6 +27,8 @@ from services.runtime.endpoint import TopicEndpoint
 
 __all__ = ["FencedEndpoint", "VisitorDep", "core_fences", "require", "router", "visitor"]
 
+logger = logging.getLogger("skydeck.core")
+
 
 def core_fences(settings: CoreSettings) -> Fences:
     """The core's fences: a class's (``--class-tokens``, ``--class-rules``) or the process
@@ -35,9 +38,14 @@ def core_fences(settings: CoreSettings) -> Fences:
         bytes_per_s=settings.student_bytes_per_s,
         calls_in_flight=settings.student_calls_in_flight,
     )
-    return Fences.load(
+    fences = Fences.load(
         tokens_file=settings.class_tokens, rules_file=settings.class_rules, process_token=settings.token, limits=limits
     )
+    if fences.policy.tokens is not None:
+        students = len(fences.policy.tokens.names) - 1
+        rules = f", rules from {settings.class_rules}" if settings.class_rules else ""
+        logger.info("a class of %d students: tokens from %s%s", students, settings.class_tokens, rules)
+    return fences
 
 
 class FencedEndpoint:

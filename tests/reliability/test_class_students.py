@@ -290,3 +290,24 @@ async def test_a_flooding_node_leaves_the_others_robot_and_the_clock_alone(room:
     program.write_text(FLOOD_NODE)
     async with _running(await _skydeck_run(room, "alice", program)), _steady(room):
         await wait_until(lambda: len(room.world.commands["alice"]) > 1000, 30, "alice's flood to reach the world")
+
+
+@pytest.mark.parametrize(
+    ("text", "mode", "said"),
+    [
+        ("alice,aaaaaaaaaaaaaaaaaaaa\ninstructor,bbbbbbbbbbbbbbbbbbbb\n", 0o644, "may be read by others (mode 644)"),
+        ("alice,aaaaaaaaaaaaaaaaaaaa\n", 0o600, "has no instructor line"),
+    ],
+)
+async def test_a_core_with_a_bad_tokens_file_stops_in_one_line(tmp_path: Path, text: str, mode: int, said: str) -> None:
+    tokens = tmp_path / "class-tokens.csv"
+    tokens.write_text(text)
+    tokens.chmod(mode)
+    process = await asyncio.create_subprocess_exec(
+        sys.executable, "-m", "services.cli", "core", "--port", "0", "--class-tokens", str(tokens),
+        cwd=REPO, stdout=asyncio.subprocess.PIPE, stderr=asyncio.subprocess.STDOUT,
+    )  # fmt: skip
+    out, _ = await asyncio.wait_for(process.communicate(), 30)
+    assert process.returncode == 1
+    lines = out.decode().strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith(f"skydeck: error: {tokens} {said}"), lines
