@@ -38,6 +38,17 @@ RUN python -m venv /opt/skydeck
 # dependencies plus numpy, which pybullet's wheel imports (tests/test_containers.py checks both).
 COPY requirements-runtime.lock /tmp/requirements-runtime.lock
 RUN /opt/skydeck/bin/pip install --require-hashes --no-deps -r /tmp/requirements-runtime.lock
+# SKYDECK_EXTRAS=ros2 (compose's ros2 profile: the image skydeck:ros2) adds the ROS 2 bridge's
+# extra: rclpy, Fast DDS and rosidl from requirements-ros2.lock, and the interface packages no
+# wheel ships, built here with cmake and g++ (which stay in this stage).
+ARG SKYDECK_EXTRAS=""
+COPY requirements-ros2.lock /tmp/requirements-ros2.lock
+RUN if [ "$SKYDECK_EXTRAS" = "ros2" ]; then \
+        apt-get update \
+        && apt-get install -y --no-install-recommends cmake g++ make \
+        && rm -rf /var/lib/apt/lists/* \
+        && /opt/skydeck/bin/pip install --require-hashes --no-deps -r /tmp/requirements-ros2.lock; \
+    fi
 WORKDIR /src
 COPY pyproject.toml README.md ./
 COPY shared_models ./shared_models
@@ -46,6 +57,7 @@ COPY web_ui ./web_ui
 COPY services ./services
 # Dependencies are already in place (--no-deps); pip builds the wheel in a throwaway build env.
 RUN /opt/skydeck/bin/pip install --no-deps .
+RUN if [ "$SKYDECK_EXTRAS" = "ros2" ]; then /opt/skydeck/bin/python -m services.protocols.ros2.interface_build; fi
 # The core serves Swagger UI and three.js from web_ui/vendor/node_modules next to the installed
 # web_ui package (services/core/app.py); the package's folder is asked, not assumed. Of three.js
 # only what the dashboard imports: the ES module build and the orbit controls.

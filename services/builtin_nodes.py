@@ -21,4 +21,6 @@ BUILTIN_NODES = {
     "person_follower": "services.behaviours.person_follower",
     "obstacle_avoider": "services.behaviours.obstacle_avoider",
     "fsm": "services.behaviours.fsm",
+    # The ROS 2 bridge (`skydeck bridge ros2`; `skydeck launch --ros2` starts it by this name).
+    "ros2_bridge": "services.protocols.ros2.main",
 }

@@ -47,6 +47,7 @@ __all__ = [
     "Int32",
     "Int64",
     "Message",
+    "Ros1Only",
     "RosPrimitive",
     "ServiceType",
     "String",
@@ -72,6 +73,12 @@ class RosPrimitive:
 class Declared:
     """Marks a field whose ``.msg`` file spells out its default (``bool read_only false``), so
     ``interface show`` prints it even where it is the type's zero."""
+
+
+@dataclass(frozen=True)
+class Ros1Only:
+    """Marks a field that ROS 2's type of the same name does not have (``Header.seq``, kept from
+    ROS 1): left out of the type's ROS 2 definition and CDR (:mod:`shared_models.ros2msg`)."""
 
 
 # Strict: JSON `true` is not the number 1 and "3" is not the integer 3 (lax pydantic would

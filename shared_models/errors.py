@@ -26,6 +26,8 @@ launcher and the CLI all descend from one class. The whole tree::
     ├── HttpError                           -    -     an internal HTTP request got no reply
     │   ├── HttpTimeout / HttpUnreachable
     ├── InvalidCommand (ValueError)         -    -     a setpoint or cmd_vel the physics refuses
+    ├── UnknownWorld (LookupError)          -    -     a world name the table of worlds does not have
+    ├── GlUnavailable (RuntimeError)        -    -     no OpenGL for the camera (it falls back to PyBullet's renderer)
     ├── LaunchError                         -    -     a launch cannot go ahead
     │   └── LaunchFileError                            the launch file is missing or wrong
     ├── PackageNotFound (LookupError)       -    -     a roslaunch file's package or node type is not there
@@ -35,6 +37,10 @@ launcher and the CLI all descend from one class. The whole tree::
     ├── TransformException                  -    -     tf2's, with its subclasses (services/ros/tf2_ros/exceptions.py)
     ├── TypeException (TypeError)           -    -     Buffer.transform of an unregistered type (tf2_ros)
     ├── CvBridgeError (TypeError)           -    -     an image cv_bridge cannot convert (services/ros/cv_bridge/)
+    ├── CdrError (ValueError)               -    -     a value that does not fit its CDR, or bytes that are no message (shared_models/cdr.py)
+    ├── NotBridged, TypeNotAvailable        -    -     a type the ROS 2 bridge cannot carry (services/protocols/ros2/)
+    ├── BuildFailed                         -    -     a ROS 2 interface package did not build (its cmake output's tail)
+    ├── BridgeUnavailable                   -    -     `skydeck bridge ros2` cannot start here (the extra, an option)
     ├── CliError                            -    -     a CLI command the user can fix
     └── BenchError                          -    -     a benchmark could not be measured
 

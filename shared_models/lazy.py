@@ -1,6 +1,6 @@
 """Lazy package exports (PEP 562): a name's module is imported the first time the name is used.
 
-    _HOMES = {"World": "sim_server.world"}
+    _HOMES = {"World": "sim_server.drone.world"}
     __getattr__ = lazy_exports(__name__, _HOMES)
 
 A package whose exports pull in heavy libraries (FastAPI, PyBullet) stays cheap for a process

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Annotated
+
 from pydantic import Field
 
 from shared_models._message import Bool as _Bool
@@ -11,7 +13,7 @@ from shared_models._message import Int8 as _Int8
 from shared_models._message import Int16 as _Int16
 from shared_models._message import Int32 as _Int32
 from shared_models._message import Int64 as _Int64
-from shared_models._message import Message
+from shared_models._message import Message, Ros1Only
 from shared_models._message import String as _String
 from shared_models._message import UInt8 as _UInt8
 from shared_models._message import UInt16 as _UInt16
@@ -52,7 +54,7 @@ class Header(Message):
         "# seq is kept from ROS 1: the publisher fills it with a consecutive number."
     )
 
-    seq: _UInt32 = 0
+    seq: Annotated[_UInt32, Ros1Only()] = 0
     stamp: Time = Field(default_factory=Time)
     frame_id: _String = ""
 

@@ -1,35 +1,18 @@
-"""Skydeck's simulator core: a PyBullet quadrotor and falling boxes, with no networking.
+"""Skydeck's simulator: a floor every world stands on, and one package per world.
 
-The simulator node (``sim_server.node``) exposes a :class:`World` over topics and services.
-:class:`InvalidCommand` (a ``ValueError``) is the one exception raised for bad pilot input;
-everything else is a programming error (``ValueError`` for a bad config, ``RuntimeError`` for
-a closed world).
+The floor (this folder): a PyBullet client and its clock (``bullet``), poses (``geometry``),
+input checks (``checks``: :class:`InvalidCommand`, the one exception for bad pilot or driver
+input), the camera and its topics (``camera``, ``camera_stream``), every world's settings
+(``settings``), what a world tells its clients (``description``) and the world node with the
+one paced physics loop (``world_node``). The worlds: ``sim_server.drone`` (the workshop's drone
+and boxes) and ``sim_server.robot`` (the Neato room), listed in one table (``worlds``) that
+``skydeck run sim`` (``node``), the core's ``/api/config``, the CLI and the launcher read.
 
-The exports load lazily, so other nodes can import ``sim_server.limits`` (the arena and speed
-limits) without loading PyBullet.
+The floor never imports a world; a world imports only the floor (and the SDK and messages).
 """
 
 from __future__ import annotations
 
-from shared_models.lazy import lazy_exports
+from sim_server.checks import InvalidCommand
 
-__all__ = [
-    "ControlMode",
-    "DroneState",
-    "InvalidCommand",
-    "World",
-    "WorldConfig",
-    "render_jpeg",
-]
-
-_HOMES = {
-    "ControlMode": "sim_server.commands",
-    "InvalidCommand": "sim_server.commands",
-    "DroneState": "sim_server.world",
-    "World": "sim_server.world",
-    "WorldConfig": "sim_server.world",
-    "render_jpeg": "sim_server.camera",
-}
-
-
-__getattr__ = lazy_exports(__name__, _HOMES)
+__all__ = ["InvalidCommand"]

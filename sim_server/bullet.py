@@ -1,10 +1,10 @@
 """What every simulated world stands on: a PyBullet client of its own, the steps it has taken
 (sim time), and a lifecycle (``close``, or a ``with`` block).
 
-The drone's :class:`~sim_server.world.World` and the robot world's
-:class:`~sim_server.robot.world.RobotWorld` are both one; a world builds its bodies on a fresh
-simulation (:meth:`BulletWorld._fresh_simulation`) and steps it at its ``PHYSICS_HZ`` (the drone world at
-the simulator's 240 Hz; the robot world, slower, at 120 Hz).
+Every world's simulation is one (the drone's :class:`~sim_server.drone.world.World`, the robot
+world's :class:`~sim_server.robot.world.RobotWorld`); a world builds its bodies on a fresh
+simulation (:meth:`BulletWorld._fresh_simulation`) and steps it at its own ``PHYSICS_HZ`` (the
+drone world at 240 Hz; the robot world, slower, at 120 Hz), under its ``GRAVITY_M_S2``.
 """
 
 from __future__ import annotations
@@ -14,16 +14,18 @@ from typing import ClassVar, Self
 
 import pybullet as p
 
-from sim_server.limits import GRAVITY_M_S2, PHYSICS_HZ
+__all__ = ["STANDARD_GRAVITY_M_S2", "BulletWorld"]
 
-__all__ = ["BulletWorld"]
+STANDARD_GRAVITY_M_S2 = 9.81
 
 
 class BulletWorld:
     """A headless PyBullet client (``p.DIRECT``) and its clock. Not thread-safe."""
 
-    PHYSICS_HZ: ClassVar[int] = PHYSICS_HZ
-    """Physics steps per sim second in this kind of world."""
+    PHYSICS_HZ: ClassVar[int]
+    """Physics steps per sim second in this kind of world (each world says)."""
+    GRAVITY_M_S2: ClassVar[float] = STANDARD_GRAVITY_M_S2
+    """Downward acceleration; a world whose controller relies on it sets its own."""
 
     def __init__(self) -> None:
         self._steps = 0
@@ -63,6 +65,12 @@ class BulletWorld:
         """Physics steps taken since the world was created."""
         return self._steps
 
+    def _check_steps(self, n: int) -> None:
+        """What every world's ``step(n)`` checks first: the world is open and ``n`` is no less than 0."""
+        self._check_open()
+        if n < 0:
+            raise ValueError(f"n={n} must be >= 0")
+
     def _check_open(self) -> None:
         if self._closed:
             name = type(self).__name__
@@ -75,6 +83,6 @@ class BulletWorld:
         solver state survive. The clock keeps running."""
         client = self._client
         p.resetSimulation(physicsClientId=client)
-        p.setGravity(0.0, 0.0, -GRAVITY_M_S2, physicsClientId=client)
+        p.setGravity(0.0, 0.0, -self.GRAVITY_M_S2, physicsClientId=client)
         p.setTimeStep(1.0 / self.PHYSICS_HZ, physicsClientId=client)
         return client

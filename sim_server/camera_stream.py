@@ -14,22 +14,21 @@ than the period delays the next tick instead of queueing renders (the timer skip
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING
 
+from services.runtime import Node
 from services.runtime.parameter import Parameter
 from shared_models.rcl_interfaces import FloatingPointRange, IntegerRange, ParameterDescriptor
 from shared_models.sensor_msgs import CompressedImage, Image
 from shared_models.std_msgs import Header
+from sim_server.camera import encode_jpeg
 from sim_server.settings import (
     MAX_CAMERA_HEIGHT,
     MAX_CAMERA_RATE_HZ,
     MAX_CAMERA_WIDTH,
     MIN_CAMERA_RATE_HZ,
     MIN_CAMERA_SIDE,
+    SimSettings,
 )
-
-if TYPE_CHECKING:
-    from sim_server.world_node import WorldNode
 
 __all__ = ["COMPRESSED_TOPIC", "RAW_TOPIC", "CameraStream"]
 
@@ -39,12 +38,14 @@ JPEG_QUALITY = 70
 
 
 class CameraStream:
-    """Publishes what ``render(width, height)`` (rgb8 bytes) sees, while anyone reads it."""
+    """Publishes what ``render(width, height)`` (rgb8 bytes) sees, while anyone reads it, on
+    ``node``'s topics, starting at ``sim``'s size and rate."""
 
-    def __init__(self, node: WorldNode, render: Callable[[int, int], bytes], header: Callable[[], Header]) -> None:
+    def __init__(
+        self, node: Node, sim: SimSettings, render: Callable[[int, int], bytes], header: Callable[[], Header]
+    ) -> None:
         self._render = render
         self._header = header
-        sim = node.sim
         self.width = self._declare(node, "camera_width", sim.camera_width, MAX_CAMERA_WIDTH, "image width, pixels")
         self.height = self._declare(node, "camera_height", sim.camera_height, MAX_CAMERA_HEIGHT, "image height, pixels")
         self.rate_hz = float(
@@ -65,7 +66,7 @@ class CameraStream:
         node.add_post_set_parameters_callback(self._changed)
 
     @staticmethod
-    def _declare(node: WorldNode, name: str, value: int, maximum: int, description: str) -> int:
+    def _declare(node: Node, name: str, value: int, maximum: int, description: str) -> int:
         descriptor = ParameterDescriptor(
             description=description, integer_range=[IntegerRange(from_value=MIN_CAMERA_SIDE, to_value=maximum)]
         )
@@ -89,8 +90,6 @@ class CameraStream:
         jpeg_wanted = self.compressed.get_subscription_count() > 0
         if not (raw_wanted or jpeg_wanted):
             return
-        from sim_server.camera import encode_jpeg  # Pillow only once someone watches
-
         width, height = self.width, self.height
         pixels = self._render(width, height)
         if raw_wanted:

@@ -1,18 +1,18 @@
-"""The simulator's options: flags ``--world/--seed/--speed/--boxes/--robots/--obstacles`` and
-``--camera-width/--camera-height/--camera-rate``, or ``SKYDECK_SIM_*`` variables. Pure settings: importing this loads no PyBullet."""
+"""What every world's simulator takes: flags ``--world/--seed/--speed`` and
+``--camera-width/--camera-height/--camera-rate``, or ``SKYDECK_SIM_*`` variables.
+
+A world's own options (the drone's ``--boxes``, the robot world's ``--robots``) are fields of
+its settings class, a subclass of :class:`SimSettings` in the world's package; the table of
+worlds (:mod:`sim_server.worlds`) names it. Pure settings: importing this loads no PyBullet.
+"""
 
 from __future__ import annotations
 
 import math
 import random
-from typing import Literal
 
-from pydantic import Field, ValidationInfo, field_validator
-from pydantic_core import PydanticCustomError
+from pydantic import Field, ValidationError, field_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
-
-from sim_server.limits import DEFAULT_BOXES, MAX_BOXES
-from sim_server.robot.limits import DEFAULT_OBSTACLES, MAX_OBSTACLES, MAX_ROBOTS
 
 __all__ = [
     "MAX_CAMERA_HEIGHT",
@@ -37,26 +37,14 @@ def draw_seed() -> int:
 
 
 class SimSettings(BaseSettings):
-    """Which world, and its options; each world's own options are refused for the other."""
+    """Which world, its seed and speed, and its camera: what every world has."""
 
     model_config = SettingsConfigDict(env_prefix="SKYDECK_SIM_", extra="ignore")
 
-    world: Literal["drone", "robot"] = "drone"
+    world: str | None = Field(default=None, description="which world (sim_server.worlds); None: the first")
     seed: int | None = Field(default=None, ge=0, le=2**32 - 1, description="None draws one")
     speed: float | None = Field(
         default=1.0, description="times real time; None is as fast as possible"
-    )
-    boxes: int = Field(
-        default=DEFAULT_BOXES, ge=0, le=MAX_BOXES, description="the drone world's falling boxes"
-    )
-    robots: int | None = Field(
-        default=None, ge=1, le=MAX_ROBOTS, description="the robot world's robots (default 1)"
-    )
-    obstacles: int | None = Field(
-        default=None,
-        ge=0,
-        le=MAX_OBSTACLES,
-        description=f"the robot world's box obstacles (default {DEFAULT_OBSTACLES})",
     )
 
     camera_width: int = Field(
@@ -87,21 +75,27 @@ class SimSettings(BaseSettings):
             raise ValueError("speed must be a number in (0, 1000] or 'max'")
         return value
 
-    @field_validator("robots", "obstacles")
     @classmethod
-    def _robot_world_only(cls, value: int | None, info: ValidationInfo) -> int | None:
-        if value is not None and info.data.get("world") != "robot":
-            raise PydanticCustomError(
-                "robot_world_only", f"only the robot world has {info.field_name}: add --world robot"
-            )
-        return value
+    def own_options(cls) -> list[str]:
+        """The fields of this world's settings that every world does not have (``boxes``)."""
+        return [name for name in cls.model_fields if name not in SimSettings.model_fields]
 
-    @property
-    def robot_count(self) -> int:
-        """How many robots the robot world has (1 unless ``robots`` says)."""
-        return 1 if self.robots is None else self.robots
+    @classmethod
+    def option_range(cls, name: str) -> tuple[float | None, float | None]:
+        """The least and greatest value option ``name`` takes (``None``: no bound)."""
+        metadata = cls.model_fields[name].metadata  # pydantic's Field(ge=..., le=...)
+        low = next((item.ge for item in metadata if hasattr(item, "ge")), None)
+        high = next((item.le for item in metadata if hasattr(item, "le")), None)
+        return low, high
 
-    @property
-    def obstacle_count(self) -> int:
-        """How many box obstacles the robot world has."""
-        return DEFAULT_OBSTACLES if self.obstacles is None else self.obstacles
+    @classmethod
+    def options_given(cls, flags: dict[str, object]) -> list[str]:
+        """Which of :meth:`own_options` are given: in ``flags`` (not ``None``) or in the
+        environment (``SKYDECK_SIM_BOXES``). Another world's node uses it to refuse them."""
+        own = cls.own_options()
+        given = {name for name in own if flags.get(name) is not None}
+        try:
+            given |= cls().model_fields_set
+        except ValidationError as error:  # a bad value is given all the same
+            given |= {str(problem["loc"][0]) for problem in error.errors() if problem["loc"]}
+        return [name for name in own if name in given]

@@ -1,11 +1,13 @@
 """What every world's simulator node shares: its name, ``/clock``, the world's identity on
-``/simulator/world``, ``/simulator/reset``, the camera (:mod:`sim_server.camera_stream`), throttled warnings, and the physics loop
-that keeps pace with the wall clock (or runs flat out at ``--speed max``).
+``/simulator/world``, ``/simulator/reset``, the camera (:mod:`sim_server.camera_stream`), the
+world's options as read-only parameters, throttled warnings, and the one physics loop that
+keeps pace with the wall clock (or runs flat out at ``--speed max``).
 
-A world's node (``sim_server.node.SimulatorNode``, the drone; ``sim_server.robot.node.
-RobotSimNode``) adds its own topics and fills in the hooks: ``PUBLISH_EVERY_STEPS``,
+A world's node (``sim_server.drone.node.DroneSimNode``, ``sim_server.robot.node.RobotSimNode``)
+adds its own topics and fills in the hooks: ``PUBLISH_EVERY_STEPS``, ``WORLD_NAME``,
 ``_publish_tick``, ``_reset_world``, ``_publish_build``, ``_world_fields`` and
-``_render_camera``.
+``_render_camera``. Its options are its settings class's own fields (a subclass of
+:class:`~sim_server.settings.SimSettings`).
 """
 
 from __future__ import annotations
@@ -16,7 +18,7 @@ import secrets
 import time
 from collections import defaultdict
 from collections.abc import Callable
-from typing import Any, ClassVar, Protocol
+from typing import Any, ClassVar, Generic, Protocol, TypeVar
 
 from pydantic import ValidationError
 
@@ -33,10 +35,24 @@ from sim_server.settings import SimSettings, draw_seed
 
 __all__ = ["DEFAULT_PORT", "SteppedWorld", "WorldNode"]
 
+S = TypeVar("S", bound=SimSettings)
+
 DEFAULT_PORT = 8001
 # Falling further behind real time than this resets the pace instead of bursting to catch up.
 _MAX_LAG_S = 0.25
 _WARN_EVERY_S = 5.0
+
+
+def _option_descriptor(sim: SimSettings, name: str) -> ParameterDescriptor:
+    """A world's own option (``boxes``) as a read-only parameter: its field's description and,
+    for a whole number, its range."""
+    low, high = sim.option_range(name)
+    ranges: list[IntegerRange] = []
+    if isinstance(getattr(sim, name), int) and isinstance(low, int) and isinstance(high, int):
+        ranges = [IntegerRange(from_value=low, to_value=high)]
+    return ParameterDescriptor(
+        read_only=True, description=type(sim).model_fields[name].description or name, integer_range=ranges
+    )
 
 
 class SteppedWorld(Protocol):
@@ -55,19 +71,15 @@ class SteppedWorld(Protocol):
     def close(self) -> None: ...
 
 
-class WorldNode(Node):
-    """The simulator node's common part; the physics loop runs in the node's event loop, in
-    chunks of ``PUBLISH_EVERY_STEPS`` physics steps, publishing after each."""
+class WorldNode(Node, Generic[S]):
+    """The simulator node's common part, for a world whose settings are ``S``; the physics loop
+    runs in the node's event loop, in chunks of ``PUBLISH_EVERY_STEPS`` physics steps,
+    publishing after each."""
 
     PUBLISH_EVERY_STEPS: ClassVar[int]
     WORLD_NAME: ClassVar[str]
 
-    def __init__(
-        self,
-        sim: SimSettings,
-        settings: NodeSettings | None,
-        build: Callable[[SimSettings], SteppedWorld],
-    ) -> None:
+    def __init__(self, sim: S, settings: NodeSettings | None, build: Callable[[S], SteppedWorld]) -> None:
         super().__init__("sim", settings=settings or node_settings().with_default_port(DEFAULT_PORT))
         self.sim = sim
         self.sim = self._declare_world_parameters()
@@ -76,13 +88,14 @@ class WorldNode(Node):
         self._last_warning: defaultdict[str, float] = defaultdict(lambda: -math.inf)
         self.world_publisher = self.create_publisher(SimWorld, "/simulator/world", 1, latched=True)
         self.clock_publisher = self.create_publisher(Time, "/clock", 10)
-        self.camera = CameraStream(self, self._render_camera, self.header)
+        self.camera = CameraStream(self, self.sim, self._render_camera, self.header)
         self.create_service(Trigger, "/simulator/reset", self.on_reset)
 
     # -- hooks --------------------------------------------------------------------------------
 
     def _publish_tick(self, steps: int) -> None:
-        """Publish what is due after the physics reached ``steps``."""
+        """Publish what is due after the physics reached ``steps``: ``/clock`` (through
+        ``clock_publisher``) and the world's own topics."""
         raise NotImplementedError
 
     def _reset_world(self) -> str:
@@ -94,20 +107,17 @@ class WorldNode(Node):
         raise NotImplementedError
 
     def _world_fields(self) -> dict[str, Any]:
-        """The world-specific fields of ``/simulator/world`` (its kind and sizes)."""
+        """The world-specific fields of ``/simulator/world`` (its sizes; ``world`` is
+        ``WORLD_NAME``)."""
         raise NotImplementedError
 
     def _render_camera(self, width: int, height: int) -> bytes:
         """One image of the world's camera, ``rgb8`` (:func:`sim_server.camera.render_rgb`)."""
         raise NotImplementedError
 
-    def _count_parameters(self) -> dict[str, tuple[int, int, str]]:
-        """The world's sizes as read-only parameters: name -> (value, maximum, description)."""
-        raise NotImplementedError
-
     # -- common -------------------------------------------------------------------------------
 
-    def _declare_world_parameters(self) -> SimSettings:
+    def _declare_world_parameters(self) -> S:
         """The world's options as read-only parameters (``skydeck param get /sim seed``); an
         override (``--ros-args -p seed:=5``) wins over the flag, as for any parameter."""
         sim = self.sim
@@ -125,20 +135,10 @@ class WorldNode(Node):
             "max" if sim.speed is None else sim.speed,
             ParameterDescriptor(read_only=True, dynamic_typing=True, description="times real time, or 'max'"),
         ).value
-        counts = {
-            name: self.declare_parameter(
-                name,
-                value,
-                ParameterDescriptor(
-                    read_only=True,
-                    description=description,
-                    integer_range=[IntegerRange(from_value=0, to_value=maximum)],
-                ),
-            ).value
-            for name, (value, maximum, description) in self._count_parameters().items()
-        }
+        own = {name: self.declare_parameter(name, getattr(sim, name), _option_descriptor(sim, name)).value
+               for name in sim.own_options()}  # fmt: skip
         try:
-            return SimSettings(**{**sim.model_dump(exclude_unset=True), "seed": seed, "speed": speed, **counts})
+            return type(sim)(**{**sim.model_dump(exclude_unset=True), "seed": seed, "speed": speed, **own})
         except ValidationError as error:
             problem = error.errors()[0]
             raise InvalidParameterValueException(
@@ -183,6 +183,7 @@ class WorldNode(Node):
             id=secrets.token_hex(8),
             seed=self.world.seed,
             build=self.resets,
+            world=self.WORLD_NAME,
             **self._world_fields(),
         )
         self.world_publisher.publish(info)

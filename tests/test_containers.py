@@ -32,7 +32,8 @@ from services.protocols.core_process import bind_endpoints
 from services.protocols.endpoints import ENDPOINTS
 from services.protocols.settings import CoreProcessSettings
 from services.runtime.ports import free_port_block
-from sim_server.node import SimSettings
+from sim_server.robot.settings import RobotSettings
+from sim_server.settings import SimSettings
 from tests.compose_config import (
     COMPOSE_FILE,
     DOCKERFILE,
@@ -111,7 +112,7 @@ def _flag(command: list[Any], flag: str) -> str | None:
 
 def test_docker_compose_config_accepts_the_file() -> None:
     resolved = resolve("drone")
-    assert set(resolved["services"]) == set(PORTS)
+    assert set(started_services(resolved)) == set(PORTS)
     sim = resolved["services"]["sim"]
     assert sim["environment"]["SKYDECK_SIM_SPEED"] == "1" and _flag(sim["command"], "--boxes") == "8"
 
@@ -141,7 +142,7 @@ def test_the_robot_worlds_settings_reach_its_simulator() -> None:
     assert sim_env == {"SKYDECK_SIM_SPEED": "max", "SKYDECK_SIM_SEED": "7", "SKYDECK_SIM_ROBOTS": "2",
                        "SKYDECK_SIM_OBSTACLES": "3"}  # fmt: skip
     settings = {key.removeprefix("SKYDECK_SIM_").lower(): value for key, value in sim_env.items()}
-    SimSettings.model_validate({"world": "robot", **settings})  # values the robot world takes
+    RobotSettings.model_validate(settings)  # values the robot world takes
 
 
 # -- both commands, resolved --------------------------------------------------------------------
@@ -150,7 +151,7 @@ def test_the_robot_worlds_settings_reach_its_simulator() -> None:
 def test_each_command_starts_what_its_launch_file_starts(
     variant: str, started: dict[str, dict[str, Any]]
 ) -> None:
-    spec = load_launch_file(find_launch_file(LAUNCH_FILE[variant]))
+    spec = load_launch_file(find_launch_file(LAUNCH_FILE[variant]), {})  # the arguments' defaults
     plans = plan_launch(spec, LaunchOptions(seed=1))
     assert set(started) == {plan.name for plan in plans}, "nor the other world's nodes"
     for plan in plans:
@@ -222,6 +223,7 @@ def test_the_readme_shows_each_command_on_one_line() -> None:
 
 
 def test_the_five_processes_from_one_image(services: dict[str, dict[str, Any]]) -> None:
+    services = {name: service for name, service in services.items() if not service.get("profiles")}
     assert set(services) == set(PORTS)
     assert {service["image"] for service in services.values()} == {"skydeck:local"}
     assert {str(service["build"]) for service in services.values()} == {"."}
@@ -239,6 +241,19 @@ def test_the_ai_keeps_its_progress_in_a_named_volume(
 
 
 # -- commands: what the CLI and the nodes accept --------------------------------------------------
+
+
+def test_the_ros2_profile_adds_the_bridge_from_an_image_with_the_extra(
+    services: dict[str, dict[str, Any]], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    bridge = services["ros2_bridge"]
+    assert bridge["profiles"] == ["ros2"] and bridge["image"] == "skydeck:ros2"
+    assert bridge["build"]["args"]["SKYDECK_EXTRAS"] == "ros2"
+    assert "ARG SKYDECK_EXTRAS" in DOCKERFILE.read_text()
+    args, extra = _command(bridge)
+    assert (args.command, args.node, args.port, args.core_url) == ("run", "ros2_bridge", 8005, CORE_URL)
+    assert health_url(bridge) == "http://127.0.0.1:8005/health"
+    _assert_node_accepts("ros2_bridge", extra, monkeypatch)
 
 
 def test_core_command(services: dict[str, dict[str, Any]]) -> None:

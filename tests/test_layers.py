@@ -31,7 +31,10 @@ LAYERS = {
     "services.protocols.foxglove": ("services.protocols.rosbridge", "services.launch", "services.cli"),
     "services.launch.supervisor": ("services.cli",),
     "services.launch.plan": ("services.cli", "services.core", "services.protocols.rosbridge", "services.protocols.foxglove"),
-    "sim_server.node": ("services.cli", "services.launch", "services.core"),
+    "sim_server.node": ("services.cli", "services.launch", "services.core", "sim_server.drone", "sim_server.robot"),
+    "sim_server.drone.node": ("services.cli", "services.launch", "services.core", "sim_server.robot"),
+    "sim_server.robot.node": ("services.cli", "services.launch", "services.core", "sim_server.drone"),
+    "sim_server.world_node": ("sim_server.drone", "sim_server.robot", "sim_server.worlds"),
 }
 
 

@@ -24,7 +24,7 @@ import math
 from collections.abc import Sequence
 from typing import Literal, get_args
 
-from sim_server.limits import ARENA_HALF_SIZE_M, BOX_SIZE_M
+from sim_server.drone.limits import ARENA_HALF_SIZE_M, BOX_SIZE_M
 
 __all__ = [
     "CLEARANCE_M",

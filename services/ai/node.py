@@ -6,10 +6,13 @@ horizontally): never spamming control. ``/ai/status`` reports every change and o
 Control's refusals are read by their reason (:class:`shared_models.ros_workshop.Refusal`), never
 by their text.
 
-Progress is saved per world (``/simulator/world``'s id, a new one for every build of the world),
-so an AI restarted in the middle of a mission carries on without visiting a box twice, a
-finished world stays finished, and a new world (a reset, a restarted simulator, another launch
-of the same seed) gets a new tour, started by itself.
+The mission starts on ``/ai/start`` (the dashboard's Start mission button), or at once with
+``--start-mission`` (``skydeck launch start_mission:=true``); until then the drone stands landed
+and the workshop's first commands (``take_off``...) are the user's. Progress is saved per world
+(``/simulator/world``'s id, a new one for every build of the world), so an AI restarted in the
+middle of a mission carries on by itself without visiting a box twice, a finished world stays
+finished, and once a mission has started a new world (a reset, a restarted simulator) gets a new
+tour, started by itself.
 
 Control's services are called directly, but where they live is asked of the core (once, and again
 after control moved). When that cannot be answered (the core is restarting, or control has not
@@ -62,7 +65,7 @@ from shared_models.ros_workshop import (
 )
 from shared_models.std_msgs import Header
 from shared_models.std_srvs import Trigger, TriggerRequest, TriggerResponse
-from sim_server.limits import ON_GROUND_Z_M, START_XY_M
+from sim_server.drone.limits import ON_GROUND_Z_M, START_XY_M
 
 __all__ = ["AiNode", "AiSettings", "main"]
 
@@ -98,6 +101,9 @@ class AiSettings(BaseSettings):
     landing: LandingPolicy = DEFAULT_LANDING
     """beside_last_box: land at the nearest clear spot beside the last box; home: fly back to the
     start and land there (the tour is then planned closed)."""
+    start_mission: bool = False
+    """True: start the mission as soon as the node runs (as the seed's AI did); False: wait for
+    ``/ai/start``, the drone landed, unless this world's mission was already under way."""
 
 
 class MissionError(SkydeckError):
@@ -158,6 +164,9 @@ class AiNode(Node):
         if self.tracker.on_world(msg) and self._mission is not None:
             self.get_logger().info("the simulator built a new world (%s): a new tour", msg.id)
             self._start_mission()
+        elif self._mission is None and _under_way(self.store.load(msg.id)):
+            # An AI restarted in the middle of a mission carries on without being asked again.
+            self._start_mission()
 
     def on_control_state(self, msg: ControlState) -> None:
         self.control_state = msg
@@ -180,7 +189,11 @@ class AiNode(Node):
 
     async def start(self) -> None:
         await super().start()
-        self._start_mission()  # as in the seed: the mission starts by itself once the world is ready
+        if self.ai.start_mission:
+            self._start_mission()  # as the seed's AI: the mission starts once the world is ready
+        else:
+            self.get_logger().info("waiting for /ai/start (the dashboard's Start mission button)")
+            self._update(message="waiting for /ai/start (the dashboard's Start mission button)")
 
     def _start_mission(self, *, again: bool = False) -> None:
         """(Re)start the mission task. ``again``: asked for by a user, so a world whose mission
@@ -407,6 +420,11 @@ class AiNode(Node):
         self.status_publisher.publish(self.status.model_copy())
 
 
+def _under_way(progress: WorldProgress | None) -> bool:
+    """Whether saved progress is of a mission started and not finished."""
+    return progress is not None and not progress.done
+
+
 def _check_landing(parameters: list[Parameter]) -> SetParametersResult:
     for parameter in parameters:
         if parameter.name == "landing" and parameter.value not in LANDING_POLICIES:
@@ -417,11 +435,18 @@ def _check_landing(parameters: list[Parameter]) -> SetParametersResult:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """``skydeck run ai [--landing beside_last_box|home]``."""
+    """``skydeck run ai [--landing beside_last_box|home] [--start-mission [true|false]]``."""
     parser = argparse.ArgumentParser(prog="skydeck run ai", description="The box-visiting mission.")
     parser.add_argument(
         "--landing",
         help=f"where to land once every box is visited: {' or '.join(LANDING_POLICIES)} (default {DEFAULT_LANDING})",
+    )
+    parser.add_argument(
+        "--start-mission",
+        nargs="?",
+        const="true",
+        metavar="true|false",
+        help="start the mission at once (default: wait for /ai/start, the dashboard's Start mission button)",
     )
     spin(AiNode(ai=settings_from_flags(parser, AiSettings, argv)))
     return 0

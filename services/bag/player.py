@@ -24,6 +24,7 @@ from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from services.bag.cdr import CDR_ENCODING
 from services.bag.errors import BagError
 from services.bag.reader import BagMessage, BagReader
 from services.bag.schemas import MESSAGE_ENCODING, message_type
@@ -31,6 +32,9 @@ from services.runtime.node import Node
 from services.runtime.publisher import Publisher
 from services.runtime.settings import NodeSettings
 from shared_models.builtin_interfaces import Time
+
+# The reader hands CDR messages over as JSON frames (services.bag.cdr).
+PLAYABLE = (MESSAGE_ENCODING, CDR_ENCODING)
 
 __all__ = ["CLOCK_TOPIC", "PlayOptions", "Player", "check_types"]
 
@@ -103,8 +107,10 @@ class Player(Node):
                 f"--start-offset {options.start_offset_s:g} s is past the end of {reader.path} ({summary.duration_s:.3f} s)"
             )
         for name in chosen:
-            if recorded[name].encoding != MESSAGE_ENCODING:
-                raise BagError(f"{name} is recorded as {recorded[name].encoding!r}: Skydeck plays JSON recordings")
+            if recorded[name].encoding not in PLAYABLE:
+                raise BagError(
+                    f"{name} is recorded as {recorded[name].encoding!r}: Skydeck plays JSON and CDR (ROS 2) recordings"
+                )
         super().__init__(f"bag_play_{os.getpid()}", settings=settings)
         self.reader = reader
         self.options = options

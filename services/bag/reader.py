@@ -17,7 +17,7 @@ from __future__ import annotations
 import io
 import os
 import struct
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import IO
@@ -28,6 +28,8 @@ from mcap.reader import SeekingReader
 from mcap.records import Channel, Chunk, Message, Metadata, Schema
 from mcap.stream_reader import StreamReader, breakup_chunk
 
+from services.bag.cdr import CDR_ENCODING, frame_decoder, skydeck_type_name
+from services.bag.cdr import SCHEMA_ENCODING as CDR_SCHEMA_ENCODING
 from services.bag.errors import BagFileError
 from services.bag.schemas import MESSAGE_ENCODING
 
@@ -88,6 +90,7 @@ class BagReader:
 
     def __init__(self, path: str | Path) -> None:
         self.path = Path(path)
+        self._decoders: dict[int, tuple[str, Callable[[bytes], str]]] = {}
         try:
             self._file: IO[bytes] = open(self.path, "rb")  # noqa: SIM115 - closed by close()
         except FileNotFoundError:
@@ -120,25 +123,27 @@ class BagReader:
             source = self._recovered_messages()
         else:
             self._file.seek(0)
-            source = (
-                (schema.name if schema else "", channel, message)
-                for schema, channel, message in SeekingReader(self._file).iter_messages(
-                    topics=wanted, log_time_order=True, starting_at=start_ns
-                )
-            )
-        for type_name, channel, message in source:
+            source = SeekingReader(self._file).iter_messages(topics=wanted, log_time_order=True, starting_at=start_ns)
+        for schema, channel, message in source:
             if wanted is not None and channel.topic not in wanted:
                 continue
             if start_ns is not None and message.log_time < start_ns:
                 continue
-            yield BagMessage(
-                channel.topic,
-                type_name,
-                message.data.decode("utf-8", errors="replace"),
-                message.log_time,
-                message.publish_time,
-                message.sequence,
-            )
+            if channel.message_encoding == CDR_ENCODING:
+                type_name, decode = self._cdr_decoder(channel, schema)
+                frame = decode(message.data)
+            else:
+                type_name, frame = (schema.name if schema else ""), message.data.decode("utf-8", errors="replace")
+            yield BagMessage(channel.topic, type_name, frame, message.log_time, message.publish_time, message.sequence)
+
+    def _cdr_decoder(self, channel: Channel, schema: Schema | None) -> tuple[str, Callable[[bytes], str]]:
+        """A CDR channel's Skydeck type and decoder, made once (:mod:`services.bag.cdr`)."""
+        found = self._decoders.get(channel.id)
+        if found is None:
+            if schema is None or schema.encoding != CDR_SCHEMA_ENCODING:
+                raise BagFileError(self.path, f"has CDR messages on {channel.topic} without a ros2msg schema")
+            found = self._decoders[channel.id] = frame_decoder(channel.topic, schema.name, schema.data)
+        return found
 
     # -- reading the file ----------------------------------------------------------------------
 
@@ -241,20 +246,23 @@ class BagReader:
                 if isinstance(item, Schema | Channel | Message | Metadata):
                     yield item
 
-    def _recovered_messages(self) -> Iterator[tuple[str, Channel, Message]]:
+    def _recovered_messages(self) -> Iterator[tuple[Schema | None, Channel, Message]]:
         schemas: dict[int, Schema] = {}
         channels: dict[int, Channel] = {}
         for record in self._records_until_damage(schemas, channels, {}, self.summary.size_bytes):
             if isinstance(record, Message) and record.channel_id in channels:
                 channel = channels[record.channel_id]
-                schema = schemas.get(channel.schema_id)
-                yield (schema.name if schema else ""), channel, record
+                yield schemas.get(channel.schema_id), channel, record
 
 
 def _topic_summary(channel: Channel, schema: Schema | None, count: int) -> TopicSummary:
+    type_name = schema.name if schema is not None else ""
+    if channel.message_encoding == CDR_ENCODING and type_name:  # a ROS 2 type: Skydeck's name
+        parts = type_name.split("/")
+        type_name = skydeck_type_name(channel.topic, f"{parts[0]}/msg/{parts[-1]}")
     return TopicSummary(
         topic=channel.topic,
-        type_name=schema.name if schema is not None else "",
+        type_name=type_name,
         count=count,
         encoding=channel.message_encoding,
         latched=channel.metadata.get("latching") == "true",

@@ -22,10 +22,12 @@ from __future__ import annotations
 
 import json
 import re
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import IO
+from typing import IO, Literal
 
+from services.bag import cdr
 from services.bag.errors import BagError
 from services.bag.mcap_file import McapFile
 from services.bag.schemas import (
@@ -36,7 +38,9 @@ from services.bag.schemas import (
     schema_bytes,
 )
 
-__all__ = ["METADATA_NAME", "BagWriter", "bag_path"]
+__all__ = ["METADATA_NAME", "BagWriter", "Encoding", "bag_path"]
+
+Encoding = Literal["json", "cdr"]
 
 METADATA_NAME = "skydeck"
 """The name of the metadata record every recording starts with (version, command line, world)."""
@@ -60,16 +64,24 @@ class _Channel:
     type_name: str
     stamped: bool  # the type has a top-level header
     count: int = 0
+    encode: Callable[[bytes], bytes] | None = None  # a CDR recording's: frame -> CDR
 
 
 class BagWriter:
-    """One MCAP recording being written; make it with :meth:`create`."""
+    """One MCAP recording being written; make it with :meth:`create`.
 
-    def __init__(self, stream: IO[bytes], path: Path, metadata: dict[str, str]) -> None:
+    ``encoding`` ``"json"`` (the default: frames as received, JSON schemas) or ``"cdr"`` (ROS 2's:
+    the ``ros2`` profile, ``ros2msg`` schemas, each frame written as CDR; :mod:`services.bag.cdr`).
+    """
+
+    def __init__(
+        self, stream: IO[bytes], path: Path, metadata: dict[str, str], *, encoding: Encoding = "json"
+    ) -> None:
         self.path = path
+        self.encoding = encoding
         self._stream = stream
         self._mcap = McapFile(stream, chunk_size=CHUNK_SIZE)
-        self._mcap.start(profile=PROFILE, library=LIBRARY)
+        self._mcap.start(profile=cdr.CDR_PROFILE if encoding == "cdr" else PROFILE, library=LIBRARY)
         self._mcap.add_metadata(METADATA_NAME, metadata)
         self._stream.flush()
         self._schemas: dict[str, int] = {}
@@ -80,7 +92,7 @@ class BagWriter:
         self.closed = False
 
     @classmethod
-    def create(cls, path: str | Path, *, metadata: dict[str, str]) -> BagWriter:
+    def create(cls, path: str | Path, *, metadata: dict[str, str], encoding: Encoding = "json") -> BagWriter:
         """Start a new recording at ``path``; BagError if it exists or cannot be written."""
         target = Path(path)
         try:
@@ -93,7 +105,7 @@ class BagWriter:
             raise BagError(f"cannot write {target}: it is a folder") from None
         except OSError as error:
             raise BagError(f"cannot write {target}: {error.strerror or error}") from None
-        return cls(stream, target, metadata)
+        return cls(stream, target, metadata, encoding=encoding)
 
     # -- topics and messages -------------------------------------------------------------------
 
@@ -105,17 +117,26 @@ class BagWriter:
                 raise BagError(f"{topic} is recorded as {channel.type_name}, not {type_name}")
             return channel.id
         msg_type = message_type(type_name)
-        schema_id = self._schemas.get(type_name)
+        if self.encoding == "cdr":
+            schema_name, schema = cdr.cdr_schema(topic, type_name)
+            schema_encoding, message_encoding = cdr.SCHEMA_ENCODING, cdr.CDR_ENCODING
+            encode = cdr.frame_encoder(type_name)
+        else:
+            schema_name, schema = type_name, b""
+            schema_encoding, message_encoding, encode = SCHEMA_ENCODING, MESSAGE_ENCODING, None
+        schema_id = self._schemas.get(schema_name)
         if schema_id is None:
-            schema_id = self._schemas[type_name] = self._mcap.register_schema(
-                type_name, SCHEMA_ENCODING, schema_bytes(type_name)
+            schema_id = self._schemas[schema_name] = self._mcap.register_schema(
+                schema_name, schema_encoding, schema or schema_bytes(type_name)
             )
         channel_id = self._mcap.register_channel(
-            topic, MESSAGE_ENCODING, schema_id, {"latching": "true" if latched else "false"}
+            topic, message_encoding, schema_id, {"latching": "true" if latched else "false"}
         )
         self._stream.flush()  # on disk before any chunk that names it
         stamped = next(iter(msg_type.model_fields), None) == "header"
-        channel = self._channels[topic] = self._by_id[channel_id] = _Channel(channel_id, topic, type_name, stamped)
+        channel = self._channels[topic] = self._by_id[channel_id] = _Channel(
+            channel_id, topic, type_name, stamped, encode=encode
+        )
         return channel.id
 
     def write(self, channel_id: int, frame: str | bytes, receive_ns: int) -> None:
@@ -123,6 +144,8 @@ class BagWriter:
         data = frame.encode() if isinstance(frame, str) else frame
         channel = self._by_id[channel_id]
         sequence, publish_ns = _seq_and_stamp(data) if channel.stamped else (0, receive_ns)
+        if channel.encode is not None:
+            data = channel.encode(data)
         self._mcap.add_message(channel_id, receive_ns, publish_ns if publish_ns >= 0 else receive_ns, sequence, data)
         channel.count += 1
         self.message_count += 1

@@ -39,7 +39,7 @@ from services.ai.planner import plan_tour
 from services.bench.processes import Worker
 from services.bench.sink import emit
 from services.launch.background import BackgroundProcess
-from sim_server.limits import MAX_SPEED_XY, MAX_SPEED_Z, ON_GROUND_Z_M, PHYSICS_HZ, START_XY_M
+from sim_server.drone.limits import MAX_SPEED_XY, MAX_SPEED_Z, ON_GROUND_Z_M, PHYSICS_HZ, START_XY_M
 
 __all__ = [
     "GroundTrack",
@@ -67,7 +67,7 @@ def least_flight_s(optimal_m: float) -> float:
 
 def settled_boxes(seed: int, boxes: int) -> tuple[Point2, list[Point2]]:
     """The drone's start and the landed boxes' (x, y) of the world with ``seed``."""
-    from sim_server.world import World, WorldConfig
+    from sim_server.drone.world import World, WorldConfig
 
     with World(WorldConfig(seed=seed, boxes=boxes)) as world:
         world.step(_SETTLE_STEPS)
@@ -204,7 +204,7 @@ async def _fly_one(seed: int, boxes: int, state_dir: str) -> dict[str, Any]:
             track = GroundTrack([(p["x"], p["y"]) for p in polygon["points"]])
             async with connect(stream_url(sim, "/drone/pose", queue=10_000), max_size=None) as poses:
                 # The AI starts only now, so the track is read from before its take-off.
-                ai = [*cli, "run", "ai", "--port", str(base + 4), "--use-sim-time"]
+                ai = [*cli, "run", "ai", "--port", str(base + 4), "--use-sim-time", "--start-mission"]
                 processes.append(BackgroundProcess(ai, name="ai", env=env))
                 reader = asyncio.create_task(_read_poses(poses, track))
                 try:

@@ -10,7 +10,7 @@ once with a subscriber node reading ``/drone/pose`` (drone) or ``/scan`` (robot)
 the subscriber, per second of the simulator process's CPU time (/proc), which a loaded machine
 changes far less than the wall-clock figure (not at all only in theory: caches and cores are
 shared too; docs/performance.md has runs at load 5-7). The references
-are :func:`sim_server.speed.measure`'s bare ``stepSimulation`` loop and
+are :func:`sim_server.drone.speed.measure`'s bare ``stepSimulation`` loop and
 :func:`sim_server.robot.speed.measure`'s bare loop casting the same rays, each in its own process.
 """
 
@@ -24,7 +24,7 @@ import httpx
 
 from services.bench.processes import BenchError, Worker, free_port, wait_http, worker_env
 from services.bench.topics import CoreHolder
-from sim_server.limits import PHYSICS_HZ
+from sim_server.drone.limits import PHYSICS_HZ
 from sim_server.robot.limits import PHYSICS_HZ as ROBOT_PHYSICS_HZ
 
 __all__ = ["measure_bare", "measure_node", "measure_robot_bare", "sim_argv"]

@@ -1,4 +1,4 @@
-"""Worker: one reading of :func:`sim_server.speed.measure` (the world and a bare PyBullet loop).
+"""Worker: one reading of :func:`sim_server.drone.speed.measure` (the world and a bare PyBullet loop).
 
     python -m services.bench.sim_worker --boxes 8 --steps 4800     # RESULT {"bare_steps_per_s", ...}
 
@@ -11,7 +11,7 @@ from __future__ import annotations
 import argparse
 
 from services.bench.sink import emit
-from sim_server.speed import measure
+from sim_server.drone.speed import measure
 
 
 def main() -> None:

@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from services.bench.camera import camera_family
 from services.bench.report import Result
 from services.bench.runner import Family, Readings, Trial, median_of
 from services.bench.topics import CoreHolder, run_topic_pair
@@ -95,8 +96,10 @@ class Suite:
             self._startup(),
             self._registry(),
             self._viewers(),
+            camera_family(self.core, window_s=max(self.settings.sim_window_s, 3.0), repetitions=self.settings.sim_repetitions),
             self._rosbridge(),
             self._bag(),
+            *self._ros2(),
             self._fences(),
         ]
         if self.plots:
@@ -183,6 +186,17 @@ class Suite:
 
         return Family("topic_latency", trials, self.settings.topic_repetitions, summarise,
                       rows=("topic_latency_p50", "topic_latency_p99", "zenoh_latency_p50", "zenoh_latency_p99"))  # fmt: skip
+
+    # -- the ROS 2 bridge (services/bench/ros2.py; only with the ros2 extra) -------------------
+
+    def _ros2(self) -> list[Family]:
+        from services.protocols.ros2.extra import missing_extra
+
+        if missing_extra() is not None:
+            return []
+        from services.bench.ros2 import ros2_family
+
+        return [ros2_family(self.settings.topic_repetitions, self.settings.throughput_s * 2)]
 
     # -- the rosbridge endpoint ---------------------------------------------------------------
 

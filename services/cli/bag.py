@@ -34,6 +34,10 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.add_argument("-x", "--exclude", metavar="REGEX", help="leave out topics this regular expression matches")
     p.add_argument("--max-duration", type=positive_float, metavar="S", help="stop after S seconds")
     p.add_argument("--max-size", type=positive_float, metavar="MB", help="stop once the file reaches MB megabytes")
+    p.add_argument(
+        "--encoding", choices=("json", "cdr"), default="json",
+        help="json (default: frames as received, for Foxglove) or cdr (ROS 2's: the ros2 profile, for rosbag2)",
+    )
     p.set_defaults(func=_record)
 
     p = verbs.add_parser("info", help="duration, times, message count and topics of a recording")
@@ -86,7 +90,7 @@ def _record(args: argparse.Namespace) -> int:
     )
     path = bag_path(args.output or time.strftime("skydeck_%Y_%m_%d-%H_%M_%S"))
     metadata = _metadata()  # also checks that the core answers, before a file is made
-    writer = BagWriter.create(path, metadata=metadata)
+    writer = BagWriter.create(path, metadata=metadata, encoding=args.encoding)
     print(f"recording to {path} (Ctrl-C stops)", flush=True)
     recorder = Recorder(writer, selection, limits=limits, settings=_node_settings(), say=_say)
     try:

@@ -63,7 +63,7 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
 
 def _doctor(args: argparse.Namespace) -> int:
     found = _Found({})
-    running: list[Callable[[], list[Check]]] = [_python, _venv, _packages, _web_ui, lambda: _core_and_clock(found), lambda: _ports(found)]
+    running: list[Callable[[], list[Check]]] = [_python, _venv, _packages, _web_ui, lambda: _core_and_clock(found), lambda: _ports(found), _ros2, _camera]
     testing: list[Callable[[], list[Check]]] = [_browser, _test_tools]
     failed = warned = 0
     for title, checks in (("running Skydeck", running), ("running the tests (make test)", testing)):
@@ -194,7 +194,7 @@ def _default_ports() -> dict[int, str]:
     local = parts.hostname in ("127.0.0.1", "localhost", "::1")
     options = LaunchOptions(seed=0, base_port=parts.port if local and parts.port else DEFAULT_BASE_PORT)
     try:
-        ports = {plan.port: plan.name for plan in plan_launch(load_launch_file(default_launch_file()), options)}
+        ports = {plan.port: plan.name for plan in plan_launch(load_launch_file(default_launch_file(), {}), options)}
     except LaunchError:  # a core so high a launch on its port could not start: the core's alone
         return {options.base_port: "core"}
     ports.update({port: endpoint.name for endpoint, port in options.core_endpoints().items() if port})
@@ -256,3 +256,26 @@ def _test_tools() -> list[Check]:
         else:
             found.append(Check("ok", "Node.js and the protocol clients' packages installed"))
     return found
+
+
+def _ros2() -> list[Check]:
+    """The ROS 2 bridge's extra, and the domain a running bridge joined (its module says)."""
+    import httpx
+
+    from services.protocols.ros2.extra import doctor_findings
+
+    try:
+        graph = httpx.get(core_url() + "/api/graph", headers=auth_headers(), timeout=3.0).json()
+    except (httpx.HTTPError, ValueError):
+        graph = None
+    return [Check(*finding) for finding in doctor_findings(graph)]
+
+
+def _camera() -> list[Check]:
+    from sim_server.camera import opengl_status  # PyBullet and OpenGL: loaded for this check only
+
+    why = opengl_status()
+    if why is None:
+        return [Check("ok", "the simulator's camera renders with OpenGL (EGL)")]
+    return [Check("warn", f"the simulator's camera falls back to PyBullet's renderer (slow: 7-10 frames/s at 640x480): {why}",
+                  "apt-get install libegl1 libgl1-mesa-dri")]  # fmt: skip

@@ -10,7 +10,15 @@ import yaml
 
 from services.cli.errors import CliError
 
-__all__ = ["message_view", "parse_data", "to_csv", "to_yaml"]
+__all__ = ["message_view", "parse_data", "system_name", "to_csv", "to_yaml"]
+
+# The systems a bridge's foreign participants belong to (the graph's ``system``), as people say them.
+_SYSTEMS = {"ros2": "ROS 2"}
+
+
+def system_name(system: str) -> str:
+    """A foreign participant's system as people name it (``ros2`` -> ``ROS 2``)."""
+    return _SYSTEMS.get(system, system)
 
 
 def to_yaml(value: Any) -> str:

@@ -6,6 +6,7 @@ import argparse
 
 from services.cli.errors import CliError
 from services.cli.run import add_endpoint_flags
+from sim_server.worlds import WORLDS, default_world, world_options  # the table only: no PyBullet
 
 __all__ = ["add_parser"]
 
@@ -18,7 +19,9 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.add_argument(
         "file",
         nargs="?",
-        help="a YAML launch file, a roslaunch XML file (.launch), or a shipped one by name: workshop (the default), robot",
+        help="a YAML launch file, a roslaunch XML file (.launch), or a shipped one by name: "
+        + ", ".join(f"{entry.launch_file} (the {name} world)" for name, entry in WORLDS.items())
+        + f"; default {default_world().launch_file}",
     )
     p.add_argument(
         "launch_args",
@@ -36,9 +39,10 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     )
     p.add_argument("--speed", default="1", help="simulator speed: times real time, or 'max' (default 1)")
     p.add_argument("--seed", type=int, help="world seed (default: a random one, printed)")
-    p.add_argument("--boxes", type=int, help="drone world: number of boxes (default 8)")
-    p.add_argument("--robots", type=int, help="robot world: number of robots, each in its namespace (default 1)")
+    for option in world_options().values():  # each world's own (--boxes, --robots...)
+        p.add_argument(option.flag, type=int, dest=f"world_{option.name}", help=f"{option.world} world: {option.description}")
     p.add_argument("--exclude", default="", help="nodes to leave out, comma-separated (e.g. perception,ai)")
+    p.add_argument("--ros2", action="store_true", help="start the ROS 2 bridge too (`skydeck bridge ros2`; domain ROS_DOMAIN_ID, else 0)")
     add_endpoint_flags(p, moved_by=", moved as far as the base port")
     p.set_defaults(func=_launch, extra_positionals="launch_args")  # NAME:=VALUE after options too
 
@@ -66,11 +70,18 @@ def _launch(args: argparse.Namespace) -> int:
         base_port=DEFAULT_BASE_PORT if args.base_port is None else args.base_port,
         speed=args.speed,
         seed=args.seed,
-        boxes=args.boxes,
         exclude=tuple(name.strip() for name in args.exclude.split(",") if name.strip()),
-        robots=args.robots,
+        world_options={
+            name: value for name in world_options() if (value := getattr(args, f"world_{name}")) is not None
+        },
+        ros2=args.ros2,
         endpoint_ports={e.name: getattr(args, e.setting) for e in ENDPOINTS if getattr(args, e.setting) is not None},
     )
+    if args.ros2:  # said at once, before anything starts
+        from services.protocols.ros2.extra import missing_extra
+
+        if (reason := missing_extra()) is not None:
+            raise CliError(reason)
     launch_args = {}
     for text in args.launch_args:
         name, separator, value = text.partition(":=")

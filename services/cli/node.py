@@ -10,6 +10,7 @@ import time
 from services.cli.arguments import node_name, positive_float, positive_int
 from services.cli.core_client import auth_headers, error_detail, get_json, post_json
 from services.cli.errors import CliError
+from services.cli.formatting import system_name
 
 __all__ = ["add_parser"]
 
@@ -34,8 +35,10 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
 
 def _list(args: argparse.Namespace) -> int:
     for node in get_json("/api/graph")["nodes"]:
-        print(node["name"])
+        # A node of another system, seen through a bridge (a ROS 2 node): marked, name first
+        print(f"{node['name']} ({system_name(node['system'])}, via {node['via']})" if node.get("system") else node["name"])
     return 0
+
 
 
 def _info(args: argparse.Namespace) -> int:
@@ -48,6 +51,8 @@ def _info(args: argparse.Namespace) -> int:
     print(f"Node [{node['name']}]\nURI: {node['url']}\nPid: {node['pid']}")
     if node.get("client"):  # a client of the core shown as a node (rosbridge, Foxglove)
         print(f"Client: {node['client']}")
+    if node.get("system"):  # another system's node, seen through a bridge
+        print(f"System: {system_name(node['system'])}, via {node['via']}")
     for title, key in (("Publications", "publications"), ("Subscriptions", "subscriptions"), ("Services", "services")):
         print(f"\n{title}:")
         if not node[key]:

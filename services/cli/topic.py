@@ -13,7 +13,7 @@ from websockets.exceptions import ConnectionClosed, InvalidHandshake
 from services.cli.arguments import known_type, positive_float, positive_int, ros_name
 from services.cli.core_client import auth_headers, core_url, get_json, ws_url
 from services.cli.errors import CliError
-from services.cli.formatting import message_view, parse_data, to_csv, to_yaml
+from services.cli.formatting import message_view, parse_data, system_name, to_csv, to_yaml
 from services.cli.streams import frames, warn_if_unpublished
 from services.cli.topic_stats import add_stats_parsers
 from shared_models.close_codes import Close
@@ -69,14 +69,21 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
 
 
 def _list(args: argparse.Namespace) -> int:
-    for topic in get_json("/api/graph")["topics"]:
+    graph = get_json("/api/graph")
+    # Nodes of another system a bridge sees (ROS 2's): their topics say so with -t and -v.
+    foreign = {node["name"]: node["system"] for node in graph["nodes"] if node.get("system")}
+    for topic in graph["topics"]:
         line = topic["name"]
         if args.show_types:
             line += f" [{topic['type']}]"
         if args.verbose:
             line += f" {len(topic['publishers'])} publisher(s), {len(topic['subscribers'])} subscriber(s)"
+        systems = sorted({foreign[p] for p in topic["publishers"] if p in foreign})
+        if systems and (args.show_types or args.verbose):
+            line += f" (from {', '.join(system_name(s) for s in systems)})"
         print(line)
     return 0
+
 
 
 def _info(args: argparse.Namespace) -> int:

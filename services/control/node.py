@@ -33,7 +33,7 @@ from shared_models.ros_workshop import (
 )
 from shared_models.std_msgs import Header
 from shared_models.std_srvs import Trigger, TriggerRequest, TriggerResponse
-from sim_server.limits import FLY_HALF_SIZE_M, ON_GROUND_Z_M
+from sim_server.drone.limits import FLY_HALF_SIZE_M, ON_GROUND_Z_M
 
 __all__ = ["ControlNode", "main"]
 

@@ -44,33 +44,10 @@ RegistryDep = Annotated[Registry, Depends(_registry)]
 
 @router.get("/config")
 async def config() -> dict[str, Any]:
-    """What clients must agree on: close codes, stream limits, and each world's arena."""
-    from sim_server import limits  # constants only: no PyBullet
-    from sim_server.robot import limits as room
+    """What clients must agree on: close codes, stream limits, and each world's numbers and names."""
+    from sim_server.worlds import worlds_config  # the table and descriptions only: no PyBullet
 
-    return {
-        **wire_description(),
-        "worlds": {
-            "drone": {
-                "arena_half_size_m": limits.ARENA_HALF_SIZE_M,
-                "fly_half_size_m": limits.FLY_HALF_SIZE_M,
-                "box_size_m": limits.BOX_SIZE_M,
-                "start_xy_m": list(limits.START_XY_M),
-            },
-            "robot": {
-                "room_half_size_m": room.ROOM_HALF_SIZE_M,
-                "wall_thickness_m": room.WALL_THICKNESS_M,
-                "robot_radius_m": room.ROBOT_RADIUS_M,
-                "wheel_separation_m": room.WHEEL_SEPARATION_M,
-                "leg_radius_m": room.LEG_RADIUS_M,
-                "leg_spacing_m": room.LEG_SPACING_M,
-                "max_linear_speed": room.MAX_LINEAR_SPEED,
-                "max_angular_speed": room.MAX_ANGULAR_SPEED,
-                "range_max_m": room.RANGE_MAX_M,
-                "starts_xy_m": [list(start) for start in room.ROBOT_STARTS_M],
-            },
-        },
-    }
+    return {**wire_description(), "worlds": worlds_config()}
 
 
 @router.get("/graph")

@@ -17,6 +17,7 @@ from typing import Any
 from services.runtime.protocol import (
     CoreFrameModel,
     Entity,
+    ForeignNode,
     NodeDescription,
     PublisherAddress,
     PublishersFrame,
@@ -204,6 +205,18 @@ class Registry:
         entity, node = hosted
         return entity, self.nodes[node]
 
+    def _foreign(self) -> list[tuple[str, ForeignNode]]:
+        """Other systems' participants, each with the node that bridges to it, by name; a name a
+        Skydeck node (or an earlier bridge) already has is listed once, as that one."""
+        seen = set(self.nodes)
+        found = []
+        for name, record in sorted(self.nodes.items()):
+            for foreign in record.description.foreign:
+                if foreign.name not in seen:
+                    seen.add(foreign.name)
+                    found.append((name, foreign))
+        return sorted(found, key=lambda item: item[1].name)
+
     def graph(self) -> dict[str, Any]:
         """Nodes, topics (type, publishers, subscribers, rate) and services, as ``/api/graph``."""
         topics: dict[str, dict[str, Any]] = {}
@@ -222,20 +235,45 @@ class Registry:
             })
             for role, entities in (("publishers", description.publications), ("subscribers", description.subscriptions)):
                 for entity in entities:
-                    topic = topics.setdefault(
-                        entity.name,
-                        {"name": entity.name, "type": entity.type, "publishers": [], "subscribers": [], "rate_hz": None,
-                         "latched": False},
-                    )
-                    topic["type"] = topic["type"] or entity.type
+                    topic = _topic_entry(topics, entity)
                     topic["latched"] = topic["latched"] or (role == "publishers" and entity.latched)
                     topic[role].append(name)
             for topic_name, (_, _, rate) in record.counters.items():
                 if topic_name in topics and rate is not None:
                     topics[topic_name]["rate_hz"] = round((topics[topic_name]["rate_hz"] or 0.0) + rate, 2)
             services.extend({"name": e.name, "type": e.type, "node": name} for e in description.services)
+        for via, foreign in self._foreign():
+            nodes.append(_foreign_node(foreign, via))
+            for role, entities in (("publishers", foreign.publications), ("subscribers", foreign.subscriptions)):
+                for entity in entities:
+                    _topic_entry(topics, entity)[role].append(foreign.name)
         return {
-            "nodes": nodes,
+            "nodes": sorted(nodes, key=lambda n: n["name"]),
             "topics": sorted(topics.values(), key=lambda t: t["name"]),
             "services": sorted(services, key=lambda s: s["name"]),
         }
+
+
+def _topic_entry(topics: dict[str, dict[str, Any]], entity: Entity) -> dict[str, Any]:
+    """The graph's entry of ``entity``'s topic, made on first use; its type from the first that says."""
+    topic = topics.setdefault(
+        entity.name,
+        {"name": entity.name, "type": entity.type, "publishers": [], "subscribers": [], "rate_hz": None, "latched": False},
+    )
+    topic["type"] = topic["type"] or entity.type
+    return topic
+
+
+def _foreign_node(foreign: ForeignNode, via: str) -> dict[str, Any]:
+    """A foreign participant as ``/api/graph`` lists it: no URL or pid of ours, its ``system``
+    (``ros2``) and the node it is reached through (``via``)."""
+    return {
+        "name": foreign.name,
+        "url": "",
+        "pid": None,
+        "publications": [e.name for e in foreign.publications],
+        "subscriptions": [e.name for e in foreign.subscriptions],
+        "services": [e.name for e in foreign.services],
+        "system": foreign.system,
+        "via": via,
+    }

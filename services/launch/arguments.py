@@ -6,6 +6,9 @@
         default: "30"
         description: the control loop's rate, Hz
       world: {}              # no default: `skydeck launch FILE world:=...` must give it
+      fast:
+        default: "false"
+        choices: ["true", "false"]   # any other value is refused before anything starts
     nodes:
       - {name: control, run: control, port_offset: 3, args: ["--rate", "{rate}"]}
 
@@ -21,7 +24,7 @@ import string
 from collections.abc import Mapping
 from typing import Any
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 from services.launch.errors import LaunchError
 
@@ -37,6 +40,9 @@ class LaunchArgument(BaseModel):
 
     default: str | None = Field(default=None, description="the value when none is given; none: required")
     description: str = Field(default="", description="shown by `skydeck launch FILE --show-args`")
+    choices: tuple[str, ...] | None = Field(
+        default=None, description="the values it may take (ROS 2's DeclareLaunchArgument choices); none: any"
+    )
 
     @field_validator("default", mode="before")
     @classmethod
@@ -44,12 +50,25 @@ class LaunchArgument(BaseModel):
         # YAML reads `default: true` as a boolean; the node is given the text a user typed.
         return str(value).lower() if isinstance(value, bool) else value
 
+    @model_validator(mode="after")
+    def _default_is_a_choice(self) -> LaunchArgument:
+        if self.choices is not None and self.default is not None and self.default not in self.choices:
+            raise ValueError(f"default {self.default!r} is not one of its choices ({', '.join(self.choices)})")
+        return self
+
+    @field_validator("choices", mode="before")
+    @classmethod
+    def _yaml_booleans(cls, value: Any) -> Any:
+        if isinstance(value, list | tuple):
+            return tuple(str(item).lower() if isinstance(item, bool) else item for item in value)
+        return value
+
 
 def fill_arguments(declared: Mapping[str, LaunchArgument], given: Mapping[str, str]) -> dict[str, str]:
     """Each declared argument's value: given, else its default.
 
-    Raises ``LaunchError`` (one line) for a given name that is not declared, or a declared
-    argument with no default that is not given.
+    Raises ``LaunchError`` (one line) for a given name that is not declared, a declared
+    argument with no default that is not given, or a value outside the argument's choices.
     """
     unknown = [name for name in given if name not in declared]
     if unknown:
@@ -60,6 +79,8 @@ def fill_arguments(declared: Mapping[str, LaunchArgument], given: Mapping[str, s
         value = given.get(name, argument.default)
         if value is None:
             raise LaunchError(f"launch argument {name!r} has no default: give it as {name}:=VALUE")
+        if argument.choices is not None and value not in argument.choices:
+            raise LaunchError(f"{name}:={value}: not one of its choices ({', '.join(argument.choices)})")
         values[name] = value
     return values
 
@@ -82,6 +103,8 @@ def show_arguments(arguments: Mapping[str, LaunchArgument]) -> str:
     lines = ["Arguments (pass arguments as '<name>:=<value>'):"]
     for name, argument in arguments.items():
         lines += ["", f"    '{name}':", f"        {argument.description or NO_DESCRIPTION}"]
+        if argument.choices is not None:
+            lines.append("        Valid choices are: [" + ", ".join(f"'{choice}'" for choice in argument.choices) + "]")
         lines.append("        (required)" if argument.default is None else f"        (default: '{argument.default}')")
     return "\n".join(lines)
 

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 from services.launch.errors import LaunchError
 from services.launch.spec import LaunchSpec, NodeSpec
 from services.protocols.endpoints import DEFAULT_BASE_PORT, ENDPOINTS, Endpoint
-from sim_server.robot.limits import MAX_ROBOTS  # constants only: no PyBullet
+from sim_server.worlds import WORLDS, default_world, world_options  # the table only: no PyBullet
 
 __all__ = [
     "DEFAULT_BASE_PORT",
@@ -33,31 +33,27 @@ __all__ = [
 ]
 
 _MAX_SEED = 2**32 - 1
-# The simulator's default (sim_server.limits.DEFAULT_BOXES, pinned by a test): importing
-# sim_server would load PyBullet into the launcher, which never simulates anything.
-DEFAULT_BOXES = 8
-_WHERE_USED = {
-    "boxes": "--boxes is the drone world's (`skydeck launch`)",
-    "robots": "--robots is the robot world's (`skydeck launch robot`)",
-}
 
 
 @dataclass(frozen=True)
 class LaunchOptions:
-    """The options of ``skydeck launch``; ``None`` means the default (a drawn seed, 8 boxes,
-    1 robot)."""
+    """The options of ``skydeck launch``; ``None`` means the default (a drawn seed). The
+    worlds' own options (``--boxes``, ``--robots``: :func:`sim_server.worlds.world_options`) are
+    in ``world_options``, by name; one not given is its world's default."""
 
     base_port: int = DEFAULT_BASE_PORT
     speed: str = "1"
     seed: int | None = None
-    boxes: int | None = None
     exclude: tuple[str, ...] = ()
-    robots: int | None = None
+    world_options: Mapping[str, int] = field(default_factory=dict)
     # The core's protocol endpoints' ports that were given (a flag, or SKYDECK_<NAME>_PORT:
     # with_given_ports), by endpoint name; 0 turns one off. Every other endpoint listens on its
     # default port moved as far as the base port moves the core (rosbridge 9090 at base 8000,
     # 20430 at base 19340), so launches side by side do not compete for them.
     endpoint_ports: Mapping[str, int] = field(default_factory=dict)
+    # `--ros2`: the ROS 2 bridge (`skydeck run ros2_bridge`) starts with the rest, on the port
+    # after the launch file's last, on ROS_DOMAIN_ID's domain (else 0).
+    ros2: bool = False
 
     def __post_init__(self) -> None:
         if not 1 <= self.base_port <= 65535:
@@ -77,10 +73,14 @@ class LaunchOptions:
                 raise LaunchError(f"--speed must be a positive number or 'max', got {self.speed!r}")
         if self.seed is not None and not 0 <= self.seed <= _MAX_SEED:
             raise LaunchError(f"--seed must be 0-{_MAX_SEED}, got {self.seed}")
-        if self.boxes is not None and self.boxes < 0:
-            raise LaunchError(f"--boxes must be 0 or more, got {self.boxes}")
-        if self.robots is not None and not 1 <= self.robots <= MAX_ROBOTS:
-            raise LaunchError(f"--robots must be 1-{MAX_ROBOTS}, got {self.robots}")
+        known = world_options()
+        for name, value in self.world_options.items():
+            option = known.get(name)
+            if option is None:
+                raise LaunchError(f"--{name}: no world has this option; theirs are {', '.join(known)}")
+            low, high = option.minimum, option.maximum
+            if (low is not None and value < low) or (high is not None and value > high):
+                raise LaunchError(f"{option.flag} must be {low:g}-{high:g}, got {value}")
 
     def with_seed(self) -> LaunchOptions:
         """These options with a seed drawn at random if none was given, so a run can be repeated."""
@@ -107,12 +107,11 @@ class LaunchOptions:
         return f"protocol endpoints {named}" + (" (moved with --base-port)" if moved else "") if named else ""
 
     def placeholders(self) -> dict[str, str]:
-        """The values of ``{speed}``, ``{boxes}``, ``{robots}``, ``{base_port}`` and (once set)
-        ``{seed}``."""
+        """The values of ``{speed}``, each world option's (``{boxes}``, ``{robots}``...),
+        ``{base_port}`` and (once set) ``{seed}``."""
         values = {
             "speed": self.speed,
-            "boxes": str(DEFAULT_BOXES if self.boxes is None else self.boxes),
-            "robots": str(1 if self.robots is None else self.robots),
+            **{name: str(self.world_options.get(name, option.default)) for name, option in world_options().items()},
             "base_port": str(self.base_port),
         }
         if self.seed is not None:
@@ -143,14 +142,18 @@ def plan_launch(spec: LaunchSpec, options: LaunchOptions) -> tuple[NodePlan, ...
     """The processes to start, in start order: the core first, then the rest as listed.
 
     Raises ``LaunchError`` for an ``exclude`` name the launch file does not have, a port past
-    65535 (a node's, or a protocol endpoint's moved with the base port), ``{seed}`` in the file with no seed in the options (see ``with_seed``), or ``--boxes``
-    or ``--robots`` given to a launch file that has no use for them.
+    65535 (a node's, or a protocol endpoint's moved with the base port), ``{seed}`` in the file
+    with no seed in the options (see ``with_seed``), or a world's option (``--boxes``) given to a
+    launch file that has no use for it.
     """
-    for option, value in (("boxes", options.boxes), ("robots", options.robots)):
-        if value is not None and not spec.uses(option):
+    for name, value in options.world_options.items():
+        if not spec.uses(name):
+            option = world_options()[name]
+            launch_file = WORLDS[option.world].launch_file
+            command = "skydeck launch" if WORLDS[option.world] is default_world() else f"skydeck launch {launch_file}"
             raise LaunchError(
-                f"--{option} {value}: this launch file does not use it (no {{{option}}} in its "
-                f"nodes); {_WHERE_USED[option]}"
+                f"{option.flag} {value}: this launch file does not use it (no {{{name}}} in its "
+                f"nodes); {option.flag} is the {option.world} world's (`{command}`)"
             )
     unknown = [name for name in options.exclude if name not in spec.names]
     if unknown:
@@ -159,7 +162,7 @@ def plan_launch(spec: LaunchSpec, options: LaunchOptions) -> tuple[NodePlan, ...
             f"does not have; its nodes are: {', '.join(spec.names)}"
         )
     last = options.base_port + max(node.port_offset for node in spec.nodes)
-    if last > 65535:
+    if last + options.ros2 > 65535:
         raise LaunchError(
             f"--base-port {options.base_port} puts the last node on port {last}, past 65535: "
             "choose a lower base port"
@@ -168,6 +171,8 @@ def plan_launch(spec: LaunchSpec, options: LaunchOptions) -> tuple[NodePlan, ...
     nodes = [node for node in spec.nodes if node.name not in options.exclude]
     nodes.sort(key=lambda node: not node.is_core)  # stable: the core first, the rest as listed
     plans = [_plan(node, options.base_port, values) for node in nodes]
+    if options.ros2:
+        plans.append(NodePlan(name="ros2_bridge", run="ros2_bridge", port=last + 1))
     if not any(plan.is_core for plan in plans):
         return tuple(plans)
     for endpoint, port in options.core_endpoints().items():

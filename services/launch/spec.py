@@ -11,8 +11,9 @@
         args: ["--speed", "{speed}", "--seed", "{seed}", "--boxes", "{boxes}"]
 
 Each node listens on ``base_port + port_offset``. Arguments and environment values may use the
-placeholders ``{speed}``, ``{seed}``, ``{boxes}``, ``{robots}`` and ``{base_port}``, filled
-from the launch options, and ``{name}`` for each launch argument the file declares under
+placeholders ``{speed}``, ``{seed}``, each world's options (``{boxes}``, ``{robots}``,
+``{obstacles}``: :func:`sim_server.worlds.world_options`) and ``{base_port}``, filled from the
+launch options, and ``{name}`` for each launch argument the file declares under
 ``arguments:`` (:mod:`services.launch.arguments`, given as ``name:=value``); ``{{`` is a literal
 brace. ``load_launch_file`` turns every problem into one
 ``LaunchFileError`` line that names the file and the place, e.g.
@@ -42,6 +43,7 @@ from pydantic_core import ErrorDetails, PydanticCustomError
 from services.builtin_nodes import BUILTIN_NODES
 from services.launch.arguments import LaunchArgument, fill_arguments, substitute
 from services.launch.errors import LaunchError, LaunchFileError
+from sim_server.worlds import default_world, world_options  # the table only: no PyBullet
 
 __all__ = [
     "BUILTIN_RUNS",
@@ -57,8 +59,9 @@ __all__ = [
 CORE_RUN = "core"
 BUILTIN_RUNS = (CORE_RUN, *BUILTIN_NODES)
 """What ``run`` may name besides a path to a .py file."""
-PLACEHOLDERS = ("speed", "seed", "boxes", "robots", "base_port")
-"""The ``{name}`` placeholders that arguments and environment values may use."""
+PLACEHOLDERS = ("speed", "seed", *world_options(), "base_port")
+"""The ``{name}`` placeholders that arguments and environment values may use: the launch's
+options, each world's own among them (``boxes``, ``robots``: the table of worlds says)."""
 
 # A node's name prefixes its output lines and is used by --exclude, so it stays plain tokens (a
 # roslaunch file's node in a namespace is named by its graph name: robot1/talker).
@@ -214,12 +217,14 @@ class LaunchSpec(BaseModel):
 
 
 def default_launch_file() -> Path:
-    """The workshop system's launch file: core, sim, perception, control and ai."""
-    return Path(__file__).with_name("workshop.yaml")
+    """The default world's launch file (the table of worlds names it): the workshop system's,
+    core, sim, perception, control and ai."""
+    return Path(__file__).with_name(f"{default_world().launch_file}.yaml")
 
 
 def shipped_launch_files() -> dict[str, Path]:
-    """The launch files that ship with Skydeck, by name: ``workshop``, ``robot``, ..."""
+    """The launch files that ship with Skydeck, by name: ``workshop``, ``robot`` (each world's,
+    as the table of worlds names them), ..."""
     return {path.stem: path for path in sorted(Path(__file__).parent.glob("*.yaml"))}
 
 

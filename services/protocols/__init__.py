@@ -1,4 +1,5 @@
-"""Protocol adapters over the core: rosbridge v2 and the Foxglove WebSocket protocol.
+"""Protocol adapters over the core: rosbridge v2 and the Foxglove WebSocket protocol; and, in a
+process of its own rather than plugged into the core, the ROS 2 bridge (``ros2/``: DDS).
 
 Each protocol is a package of its own (``rosbridge/``, ``foxglove/``) that translates its frames
 to the core's one topic edge and one service-call path and owns nothing else; it declares an

@@ -10,11 +10,12 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import Callable, Coroutine
-from typing import Any, TypeVar
+from typing import Any, Literal, TypeVar
 
 from services.runtime.app import NodeApp
 from services.runtime.client import Client
 from services.runtime.clock import Clock
+from services.runtime.edge.encoding import Encoding
 from services.runtime.errors import NodeError
 from services.runtime.http_client import HttpClient
 from services.runtime.logger import NodeLogger
@@ -23,6 +24,7 @@ from services.runtime.parameter import Parameter
 from services.runtime.parameter_service import PARAMETER_EVENTS, parameter_services
 from services.runtime.parameters import NodeParameters
 from services.runtime.participant import Participant
+from services.runtime.protocol import ForeignNode
 from services.runtime.publisher import Publisher
 from services.runtime.ros_args import (
     ROS_ARGS,
@@ -224,20 +226,24 @@ class Node(ParametersMixin):
         self,
         msg_type: type[M],
         topic: str,
-        callback: Callable[[M], Any] | Callable[[str], Any],
+        callback: Callable[[M], Any] | Callable[[str], Any] | Callable[[bytes], Any],
         qos_profile: int = 10,
         *,
         raw: bool = False,
+        raw_encoding: Literal["json", "msgpack"] = "json",
     ) -> Subscription | RawSubscription:
         """Call ``callback(msg)`` for every message on ``topic``; ``qos_profile`` is the queue depth.
 
         ``raw=True`` (as rclpy's): ``callback(frame)`` gets each message's JSON text as received,
         unparsed; it runs where the frame arrives, so it must be quick (a recorder's write).
+        ``raw_encoding="msgpack"`` gets the msgpack bytes links carry instead (byte arrays as
+        bytes, not base64: the ROS 2 bridge's way to a camera's images).
         """
         self._check_alive()
         endpoint = self._participant.endpoint(msg_type, self._names.resolve(topic))
         if raw:
-            tap = RawSubscription(endpoint.name, msg_type, callback, _depth(qos_profile))  # type: ignore[arg-type]
+            encoding = Encoding.MSGPACK if raw_encoding == "msgpack" else Encoding.JSON
+            tap = RawSubscription(endpoint.name, msg_type, callback, _depth(qos_profile), encoding)  # type: ignore[arg-type]
             endpoint.taps.add(tap)
             self._changed()
             return tap
@@ -295,6 +301,13 @@ class Node(ParametersMixin):
     def _changed(self) -> None:
         if self._session is not None:
             self._session.mark_changed()
+
+    def set_foreign_participants(self, participants: list[ForeignNode]) -> None:
+        """Say which participants of another system this node bridges to (a ROS 2 bridge's ROS 2
+        nodes): the graph lists them, marked with their system, until this node leaves."""
+        if participants != self._participant.foreign:
+            self._participant.foreign = list(participants)
+            self._changed()
 
     def describe(self):  # type: ignore[no-untyped-def]
         """What this node tells the core about itself (a NodeDescription)."""

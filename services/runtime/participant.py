@@ -17,7 +17,7 @@ from services.runtime.edge.encoding import Encoding
 from services.runtime.edge.links import PublisherLink
 from services.runtime.endpoint import TopicEndpoint
 from services.runtime.errors import NodeError
-from services.runtime.protocol import Entity, NodeDescription, PublisherAddress
+from services.runtime.protocol import Entity, ForeignNode, NodeDescription, PublisherAddress
 from services.runtime.service import Service
 from services.runtime.settings import ProcessSettings
 from services.runtime.subscription import RawSubscription
@@ -54,6 +54,8 @@ class Participant:
         self.services: dict[str, Service] = {}
         # (topic, publisher URL) -> the link and the task running it
         self.links: dict[tuple[str, str], tuple[PublisherLink, asyncio.Task[None]]] = {}
+        # Other systems' participants it bridges to (a ROS 2 bridge's ROS 2 nodes), for the graph
+        self.foreign: list[ForeignNode] = []
         self._spawn: Spawn | None = None
         self._on_endpoint = on_endpoint
         self._on_service = on_service
@@ -113,6 +115,7 @@ class Participant:
             publications=publications,
             subscriptions=subscriptions,
             services=services,
+            foreign=self.foreign,
             interfaces=definitions_of([*types, *(s.srv_type for s in self.services.values())]),
         )
 
@@ -142,7 +145,7 @@ class Participant:
         # Nodes link in msgpack; a topic read here only raw (a recorder) links in JSON, so its
         # frames come as the publisher serialised them, never converted here.
         raw_only = bool(endpoint.taps) and not endpoint.subscriptions and all(
-            isinstance(tap, RawSubscription) for tap in endpoint.taps
+            isinstance(tap, RawSubscription) and tap.encoding is Encoding.JSON for tap in endpoint.taps
         )
         encoding = Encoding.JSON if raw_only else Encoding.MSGPACK
         for url in wanted:

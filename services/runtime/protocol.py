@@ -18,6 +18,7 @@ __all__ = [
     "CoreFrame",
     "CoreFrameModel",
     "Entity",
+    "ForeignNode",
     "NodeDescription",
     "NodeFrame",
     "PublisherAddress",
@@ -44,6 +45,17 @@ class Entity(_Frame):
     latched: bool = False
 
 
+class ForeignNode(_Frame):
+    """A participant of another system that a node bridges to (a ROS 2 node seen over DDS by the
+    ROS 2 bridge): listed in the graph, marked with its ``system``, never linked to."""
+
+    name: str
+    system: str
+    publications: list[Entity] = []
+    subscriptions: list[Entity] = []
+    services: list[Entity] = []
+
+
 class NodeDescription(_Frame):
     """What a node tells the core about itself."""
 
@@ -60,6 +72,8 @@ class NodeDescription(_Frame):
     # workspace's msg/srv/action), by the type each declares ("my_pkg/msg/Status": "int32 x\n"):
     # how the core, the dashboard, rosbridge, Foxglove and bags learn a node's own types.
     interfaces: dict[str, str] = {}
+    # The other systems' participants this node bridges to; they leave the graph with it.
+    foreign: list[ForeignNode] = []
 
 
 class RegisterFrame(_Frame):

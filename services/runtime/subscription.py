@@ -11,6 +11,7 @@ from collections.abc import Awaitable, Callable
 from typing import Any
 
 from services.runtime.callbacks import call_user
+from services.runtime.edge.encoding import Encoding
 from services.runtime.edge.outbox import Outbox
 from shared_models import Message
 
@@ -129,16 +130,24 @@ class RawSubscription(Outbox):
     (rclpy's ``raw=True``): what a recorder needs, serialised once by the publisher.
 
     It is a tap on the topic's endpoint, so it sees every frame the participant gets: from each
-    remote publisher, from clients of this node, and its own publications, always as JSON text
-    (a topic read only raw links in JSON, so nothing is converted). The callback runs where the
-    frame arrives, so it must be a quick plain function; ``queue_size`` is the depth each
-    publisher keeps for this participant while it reads.
+    remote publisher, from clients of this node, and its own publications, as JSON text (a topic
+    read only raw links in JSON, so nothing is converted), or, with ``encoding`` MSGPACK, as the
+    msgpack bytes links carry between nodes (byte arrays as bytes: what the ROS 2 bridge reads).
+    The callback runs where the frame arrives, so it must be a quick plain function;
+    ``queue_size`` is the depth each publisher keeps for this participant while it reads.
     """
 
-    def __init__(self, topic_name: str, msg_type: type[Message], callback: Callable[[str], Any], queue_size: int) -> None:
+    def __init__(
+        self,
+        topic_name: str,
+        msg_type: type[Message],
+        callback: Callable[[Any], Any],
+        queue_size: int,
+        encoding: Encoding = Encoding.JSON,
+    ) -> None:
         if inspect.iscoroutinefunction(callback):
             raise TypeError(f"a raw subscription's callback runs where each frame arrives: give {topic_name} a plain function")
-        super().__init__(1)
+        super().__init__(1, encoding)
         self.topic_name = topic_name
         self.msg_type = msg_type
         self.callback = callback
@@ -146,7 +155,7 @@ class RawSubscription(Outbox):
         self._logger = logging.getLogger("skydeck.runtime")
 
     def push(self, frame: str | bytes) -> None:
-        if not isinstance(frame, str):  # its encoding is JSON: every endpoint hands it text
+        if self.encoding is Encoding.JSON and not isinstance(frame, str):  # endpoints hand JSON taps text
             raise TypeError(f"raw subscription of {self.topic_name} got a binary frame")
         try:
             self.callback(frame)

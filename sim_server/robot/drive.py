@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from sim_server.commands import finite_number
+from sim_server.checks import finite_number
 from sim_server.robot.limits import (
     MAX_ANGULAR_SPEED,
     MAX_LINEAR_SPEED,

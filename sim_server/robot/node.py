@@ -39,11 +39,9 @@ from shared_models.std_msgs import ColorRGBA, Header
 from shared_models.tf2_msgs import TFMessage
 from shared_models.visualization_msgs import Marker, MarkerArray
 from sim_server.camera import View, render_rgb
-from sim_server.commands import InvalidCommand
+from sim_server.checks import InvalidCommand
 from sim_server.robot.limits import (
     LASER_HEIGHT_M,
-    MAX_OBSTACLES,
-    MAX_ROBOTS,
     OBSTACLE_HEIGHT_M,
     ODOM_EVERY_STEPS,
     PHYSICS_DT_S,
@@ -57,9 +55,9 @@ from sim_server.robot.limits import (
     WALL_HEIGHT_M,
     WALL_THICKNESS_M,
 )
+from sim_server.robot.settings import RobotSettings
 from sim_server.robot.world import Bump as WorldBump
 from sim_server.robot.world import RobotWorld, RobotWorldConfig
-from sim_server.settings import SimSettings
 from sim_server.world_node import WorldNode
 
 __all__ = ["RobotSimNode", "robot_namespaces"]
@@ -104,20 +102,18 @@ class _RobotTopics:
             self._node.warn("cmd_vel", f"refused cmd_vel: {error}; the robot stops")
 
 
-def _build_world(sim: SimSettings) -> RobotWorld:
-    return RobotWorld(
-        RobotWorldConfig(seed=sim.seed, robots=sim.robot_count, obstacles=sim.obstacle_count)
-    )
+def _build_world(sim: RobotSettings) -> RobotWorld:
+    return RobotWorld(RobotWorldConfig(seed=sim.seed, robots=sim.robots, obstacles=sim.obstacles))
 
 
-class RobotSimNode(WorldNode):
+class RobotSimNode(WorldNode[RobotSettings]):
     """The robot world as a node; ``world`` is its :class:`RobotWorld`."""
 
     PUBLISH_EVERY_STEPS = ODOM_EVERY_STEPS  # 30 Hz: odom, bump, tf and clock
     WORLD_NAME = "robot"
 
-    def __init__(self, sim: SimSettings | None = None, settings: NodeSettings | None = None) -> None:
-        super().__init__(sim or SimSettings(world="robot"), settings, _build_world)
+    def __init__(self, sim: RobotSettings | None = None, settings: NodeSettings | None = None) -> None:
+        super().__init__(sim or RobotSettings(), settings, _build_world)
         self.world: RobotWorld
         world = self.world
         self.namespaces = robot_namespaces(world.robot_count)
@@ -141,14 +137,8 @@ class RobotSimNode(WorldNode):
         self.world.reset()
         return "robots at their starts, odometry zeroed, the person at the start of the walk"
 
-    def _count_parameters(self) -> dict[str, tuple[int, int, str]]:
-        return {
-            "robots": (self.sim.robot_count, MAX_ROBOTS, "number of robots (under /robot1, /robot2...)"),
-            "obstacles": (self.sim.obstacle_count, MAX_OBSTACLES, "number of box obstacles"),
-        }
-
     def _world_fields(self) -> dict[str, Any]:
-        return {"world": "robot", "boxes": len(self.world.obstacles), "namespaces": self.namespaces}
+        return {"boxes": len(self.world.obstacles), "namespaces": self.namespaces}
 
     def _render_camera(self, width: int, height: int) -> bytes:
         x, y, yaw = self.world.robot_pose(0)

@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 import pybullet as p
 
 from sim_server.bullet import BulletWorld
+from sim_server.geometry import yaw_of
 from sim_server.robot.bodies import (
     WHEELS,
     create_floor,
@@ -56,7 +57,6 @@ from sim_server.robot.limits import (
 )
 from sim_server.robot.scan import Laser
 from sim_server.settings import draw_seed
-from sim_server.world import yaw_of
 
 __all__ = ["Bump", "RobotWorld", "RobotWorldConfig", "bumper_part"]
 
@@ -163,9 +163,7 @@ class RobotWorld(BulletWorld):
 
     def step(self, n: int = 1) -> None:
         """Advance the world by ``n`` physics steps of 1/PHYSICS_HZ s."""
-        self._check_open()
-        if n < 0:
-            raise ValueError(f"n={n} must be >= 0")
+        self._check_steps(n)
         client = self._client
         step_simulation = p.stepSimulation
         steps = self._steps

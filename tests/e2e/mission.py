@@ -33,7 +33,7 @@ async def ai_process(system: LaunchedSystem, state_dir: Path, *args: str) -> Asy
     must stop cleanly without a traceback."""
     env = {**os.environ, "SKYDECK_CORE_URL": system.core_url, "SKYDECK_STATE_DIR": str(state_dir), "PYTHONUNBUFFERED": "1"}
     ai = BackgroundProcess(
-        [sys.executable, "-m", "services.cli", "run", "ai", "--port", str(_base_port(system) + 4), "--use-sim-time", *args],
+        [sys.executable, "-m", "services.cli", "run", "ai", "--port", str(_base_port(system) + 4), "--use-sim-time", "--start-mission", *args],
         name="skydeck run ai",
         env=env,
     )

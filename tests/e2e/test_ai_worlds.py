@@ -73,7 +73,7 @@ async def _landed(track) -> None:  # type: ignore[no-untyped-def]
 
 
 async def test_ai_killed_mid_mission_comes_back_and_finishes_without_a_second_visit(launch) -> None:
-    system = await launch("--speed", "10", "--seed", "5", "--boxes", "6")
+    system = await launch("--speed", "10", "--seed", "5", "--boxes", "6", "start_mission:=true")
     boxes = await box_positions(system, 6)
     pid = await _ai_pid(system)
     await system.messages("/ai/status", lambda m: len(m["visited"]) >= 2, 120)
@@ -108,7 +108,7 @@ async def test_ai_killed_mid_mission_comes_back_and_finishes_without_a_second_vi
 
 
 async def test_a_reset_mid_mission_starts_a_new_tour_over_the_new_boxes(launch, tmp_path) -> None:
-    system = await launch("--speed", "10", "--seed", "9", "--boxes", "4")
+    system = await launch("--speed", "10", "--seed", "9", "--boxes", "4", "start_mission:=true")
     old_boxes = await box_positions(system, 4)
     old_world = await _world_id(system)
     pid = await _ai_pid(system)
@@ -152,7 +152,7 @@ async def test_a_corrupt_or_unreadable_state_file_is_ignored_with_a_warning(laun
         state_file.write_bytes(b'{"version": 2, "worlds": [{"world": \xff')
     else:
         state_file.mkdir()  # a directory where the file should be: reading and replacing it fail
-    system = await launch("--speed", "max", "--seed", "3", "--boxes", "2")
+    system = await launch("--speed", "max", "--seed", "3", "--boxes", "2", "start_mission:=true")
     status = await _done(system)
     assert status["state"] == "done" and sorted(status["visited"]) == [0, 1], status
     warnings = [line for line in system.lines if "[ai]" in line and "progress" in line and "WARN" in line]

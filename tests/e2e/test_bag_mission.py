@@ -70,7 +70,7 @@ def contiguous_run(recorded: list[str], received: list[str]) -> bool:
 
 
 async def test_record_the_mission_then_play_it_into_a_fresh_core(launch, tmp_path: Path) -> None:
-    system = await launch("--speed", "max", "--seed", "21", "--boxes", "4")
+    system = await launch("--speed", "max", "--seed", "21", "--boxes", "4", "start_mission:=true")
     graph = await system.graph()
     topics = {t["name"]: t["type"] for t in graph["topics"] if t["type"] and not re.search(EXCLUDE, t["name"])}
     assert {"/drone/pose", "/clock", "/simulator/boxes", "/drone/state"} <= set(topics)

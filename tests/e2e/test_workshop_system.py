@@ -10,7 +10,7 @@ import pytest
 
 from services.ai.landing import BOX_FOOTPRINT_RADIUS_M, DRONE_RADIUS_M
 from services.bench.mission import optimal_flight_m
-from sim_server.limits import START_XY_M
+from sim_server.drone.limits import START_XY_M
 from tests.e2e.mission import ai_process, box_positions, recording
 
 pytestmark = [pytest.mark.e2e, pytest.mark.timeout(240)]

@@ -103,7 +103,7 @@ async def _until(messages: list[dict], predicate: Callable[[dict], bool], timeou
 
 
 async def test_killed_control_and_perception_respawn_and_the_mission_completes(launch) -> None:
-    system = await launch("--speed", SPEED, "--seed", "3")
+    system = await launch("--speed", SPEED, "--seed", "3", "start_mission:=true")
     with _explained(system):
         await system.messages("/ai/status", lambda m: len(m["visited"]) >= 2, 60)
         await _kill_and_wait_respawn(system, "control")
@@ -119,7 +119,7 @@ async def test_killed_control_and_perception_respawn_and_the_mission_completes(l
 
 
 async def test_killed_core_respawns_streams_flow_meanwhile_and_nodes_register_again(launch) -> None:
-    system = await launch("--speed", SPEED, "--seed", "4")
+    system = await launch("--speed", SPEED, "--seed", "4", "start_mission:=true")
     with _explained(system):
         base = int(system.core_url.rsplit(":", 1)[1])
         sim_url, ai_url = f"http://127.0.0.1:{base + 1}", f"http://127.0.0.1:{base + 4}"
@@ -166,7 +166,7 @@ async def test_killed_core_respawns_streams_flow_meanwhile_and_nodes_register_ag
 
 
 async def test_killed_sim_is_noticed_reported_and_the_mission_restarts_after_a_reset(launch) -> None:
-    system = await launch("--speed", SPEED, "--seed", "5")
+    system = await launch("--speed", SPEED, "--seed", "5", "start_mission:=true")
     sim_port = int(system.core_url.rsplit(":", 1)[1]) + 1
     with _explained(system):
         await system.messages("/ai/status", lambda m: len(m["visited"]) >= 2, 60)

@@ -45,7 +45,7 @@ def test_every_project_exception_descends_from_skydeck_error() -> None:
 
 def test_errors_keep_the_builtin_class_callers_expect() -> None:
     from shared_models import InvalidNameError, UnknownInterfaceError
-    from sim_server.commands import InvalidCommand
+    from sim_server.checks import InvalidCommand
 
     assert issubclass(InvalidNameError, ValueError) and issubclass(InvalidCommand, ValueError)
     assert issubclass(UnknownInterfaceError, LookupError)

@@ -16,14 +16,16 @@ from services.runtime import NodeSettings, Parameter
 from services.runtime.edge.links import stream_url
 from services.runtime.ros_args import RosArguments, parse_ros_args, set_process_ros_arguments
 from sim_server.camera_stream import COMPRESSED_TOPIC, RAW_TOPIC
-from sim_server.node import SimSettings, SimulatorNode, main
+from sim_server.drone.node import DroneSimNode
+from sim_server.drone.settings import DroneSettings
+from sim_server.node import main
 from tests.conftest import wait_until
 
 pytestmark = pytest.mark.timeout(90)
 
 
 def _sim(**camera: float):
-    return lambda settings: SimulatorNode(SimSettings(seed=1, boxes=2, speed=None, **camera), settings)
+    return lambda settings: DroneSimNode(DroneSettings(seed=1, boxes=2, speed=None, **camera), settings)
 
 
 async def _read(url: str, count: int) -> list[dict]:
@@ -106,7 +108,7 @@ def ros_args():
 
 def test_the_camera_options_are_parameters_an_override_can_set(ros_args) -> None:
     set_process_ros_arguments(parse_ros_args(["-p", "camera_width:=640", "-p", "camera_rate:=12.5"]))
-    sim = SimulatorNode(SimSettings(seed=1, boxes=0), NodeSettings(port=0))
+    sim = DroneSimNode(DroneSettings(seed=1, boxes=0), NodeSettings(port=0))
     sim.world.close()
     assert (sim.camera.width, sim.camera.height, sim.camera.rate_hz) == (640, 240, 12.5)
     assert sim.describe_parameter("camera_height").integer_range[0].to_value == 480

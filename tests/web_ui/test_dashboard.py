@@ -15,6 +15,8 @@ from urllib.parse import urlsplit
 import pytest
 
 from tests.web_ui.system import System
+from tests.web_ui.view3d_page import open_3d
+from tests.web_ui.world_names import read_topics, untyped_topics, world_topics
 
 pytestmark = [pytest.mark.browser, pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(120)]
 
@@ -46,7 +48,10 @@ def pose(page) -> dict[str, float]:  # type: ignore[no-untyped-def]
 def test_page_loads_without_errors_and_talks_only_to_the_core(dashboard, system: System) -> None:  # type: ignore[no-untyped-def]
     page, recorder = dashboard
     page.wait_for_function("window.skydeck.mapFrames > 10 && window.skydeck.coreReachable", timeout=10_000)
-    page.wait_for_function("window.skydeck.sockets().every(s => s.state === 'open')", timeout=10_000)
+    # Every socket is open but those of names nobody publishes here (no perception, no AI).
+    page.wait_for_function("window.skydeck.sockets().every(s => s.state === 'open' || s.state === 'waiting')", timeout=10_000)
+    waiting = page.evaluate("window.skydeck.sockets().filter(s => s.state === 'waiting').map(s => s.topic)")
+    assert sorted(waiting) == ["/ai/status", "/perception/boxes"]
     assert page.title() == "Skydeck"
     assert recorder.errors == []
     core = urlsplit(system.url).netloc
@@ -76,6 +81,25 @@ def test_lists_topics_services_and_nodes(dashboard) -> None:  # type: ignore[no-
         page.locator(f'#node-list li[data-node="{name}"]').wait_for(timeout=10_000)
     page.click("[data-tab=graph]")
     page.locator('#graph-diagram g[data-name="/drone/pose"]').wait_for(timeout=10_000)
+
+
+def test_a_bridges_ros2_nodes_are_listed_and_drawn_as_ros2(dashboard, system: System) -> None:  # type: ignore[no-untyped-def]
+    from services.runtime.protocol import Entity, ForeignNode
+    from tests.web_ui.threaded_node import ThreadedNode
+
+    page, _ = dashboard
+    bridge = ThreadedNode("fake_ros2_bridge", system.url)  # says what a ROS 2 bridge says
+    talker = ForeignNode(name="/talker", system="ros2", publications=[Entity(name="/chatter", type="std_msgs/msg/String")])
+    try:
+        bridge._loop.call_soon_threadsafe(bridge.node.set_foreign_participants, [talker])
+        item = page.locator('#node-list li[data-node="/talker"]')
+        item.wait_for(timeout=10_000)
+        assert "ROS 2 node, via /fake_ros2_bridge" in item.inner_text()
+        page.click("[data-tab=graph]")
+        page.locator('#graph-diagram g.vertex.node.ros2[data-name="/talker"]').wait_for(timeout=10_000)
+        assert page.locator('#graph-diagram g.vertex.node.ros2[data-name="/sim"]').count() == 0
+    finally:
+        bridge.close()
 
 
 def test_teleop_drives_the_drone_only_when_on(dashboard, system: System) -> None:  # type: ignore[no-untyped-def]
@@ -277,6 +301,19 @@ def test_inspector_echoes_pauses_and_publishes(dashboard, system: System) -> Non
     assert page.get_attribute("#inspect-result", "data-kind") == "error"
 
 
+def test_the_page_reads_only_what_is_published_and_makes_no_ghost_topic(dashboard, system: System) -> None:  # type: ignore[no-untyped-def]
+    # This system runs no perception and no AI: their names (the drone world's, from its
+    # description) are waited for, never read, so no topic appears without a publisher.
+    page, recorder = dashboard
+    open_3d(page)
+    page.wait_for_function("window.skydeck.sockets().some(s => s.topic === '/perception/boxes' && s.state === 'waiting')", timeout=10_000)
+    read = read_topics(recorder.urls, system.url)
+    assert {"/drone/pose", "/simulator/boxes", "/simulator/world"} <= read, read
+    assert read & {"/perception/boxes", "/ai/status", "/tf", "/tf_static"} == set(), read
+    assert read <= world_topics(system.url, "drone") | {"/simulator/world", "/rosout"}
+    assert untyped_topics(system.url) == []
+
+
 def test_banner_and_reconnection_when_the_core_or_the_simulator_goes_away(dashboard, system: System) -> None:  # type: ignore[no-untyped-def]
     # Last in the module: it stops the core, then the simulator.
     page, _ = dashboard
@@ -297,3 +334,4 @@ def test_banner_and_reconnection_when_the_core_or_the_simulator_goes_away(dashbo
     system.processes["sim"].stop()
     page.wait_for_function("document.querySelector('#status-banner').dataset.state === 'warn'", timeout=15_000)
     assert "Simulator not" in page.inner_text("#status-banner")
+

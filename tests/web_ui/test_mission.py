@@ -32,7 +32,7 @@ def system(tmp_path_factory: pytest.TempPathFactory) -> Iterator[System]:
         running.start("sim", ["run", "sim", "--speed", "1", "--seed", "1"], base + 1)
         running.start("perception", ["run", "perception"], base + 2)
         running.start("control", ["run", "control"], base + 3)
-        running.start("ai", ["run", "ai"], base + 4, env=state)
+        running.start("ai", ["run", "ai", "--start-mission"], base + 4, env=state)
         yield running
     finally:
         running.stop()

@@ -12,6 +12,8 @@ import pytest
 from tests.sim_server.robot.room import call, latest, start_room, truth
 from tests.web_ui.conftest import Recorder, open_dashboard
 from tests.web_ui.system import System
+from tests.web_ui.view3d_page import open_3d, wait_view
+from tests.web_ui.world_names import read_topics, untyped_topics, world_topics
 
 pytestmark = [pytest.mark.browser, pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(120)]
 
@@ -87,3 +89,15 @@ def test_the_reset_button_brings_the_robot_back(dashboard, room: System) -> None
     page.wait_for_function("document.querySelector('#command-result').dataset.kind === 'success'", timeout=10_000)
     assert "robots at their starts" in page.locator("#command-result").inner_text()
     page.wait_for_function("Math.hypot(window.skydeck.room.robots[0].pose.x, window.skydeck.room.robots[0].pose.y) < 0.01", timeout=10_000)
+
+
+def test_the_page_reads_only_the_robot_worlds_names_and_makes_no_ghost_topic(dashboard, room: System) -> None:  # type: ignore[no-untyped-def]
+    page, recorder = dashboard
+    page.check("#camera-toggle")
+    page.wait_for_function("window.skydeck.sockets().some(s => s.topic.startsWith('/simulator/camera') && s.state === 'open')", timeout=10_000)
+    open_3d(page)  # the 3D view's world and TF too
+    wait_view(page, "v.world.robot.robots.length === 1")
+    read = read_topics(recorder.urls, room.url)
+    assert {"/scan", "/odom", "/simulator/world", "/simulator/obstacles", "/tf"} <= read, read
+    assert read & world_topics(room.url, "drone") == set(), "the drone world's names, read in the robot world"
+    assert untyped_topics(room.url) == []

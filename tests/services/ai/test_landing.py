@@ -8,7 +8,7 @@ import random
 import pytest
 
 from services.ai.landing import CLEARANCE_M, finishing_legs, is_clear, landing_spot
-from sim_server.limits import ARENA_HALF_SIZE_M
+from sim_server.drone.limits import ARENA_HALF_SIZE_M
 
 
 def test_the_spot_is_straight_ahead_at_the_clearance() -> None:

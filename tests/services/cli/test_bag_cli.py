@@ -26,6 +26,16 @@ def recorder(core_url: str, *args: str) -> BackgroundProcess:
     return BackgroundProcess([sys.executable, "-m", "services.cli", "bag", "record", *args], name="recorder", env=env)
 
 
+async def linked_recorder(core_url: str, talker: Talker, *args: str) -> BackgroundProcess:
+    """``skydeck bag record ARGS``, returned once the talker's /points is linked to it."""
+    process = recorder(core_url, *args)
+    await process.await_line("subscribed to /points", 30)
+    async with asyncio.timeout(20):
+        while talker.publisher.get_subscription_count() < 1:
+            await asyncio.sleep(0.02)
+    return process
+
+
 async def test_ctrl_c_finishes_the_file_and_info_prints_it(core, start_node, tmp_path: Path) -> None:
     talker = await start_node(Talker)
     process = recorder(core.url, "/points", "/points_text", "-o", str(tmp_path / "run"))
@@ -62,12 +72,8 @@ def recorded(path: Path, topic: str) -> int:
 
 async def test_a_killed_recorder_leaves_a_file_info_and_play_still_read(core, start_node, tmp_path: Path) -> None:
     talker = await start_node(Talker)
-    process = recorder(core.url, "-a", "-o", str(tmp_path / "killed.mcap"))
+    process = await linked_recorder(core.url, talker, "-a", "-o", str(tmp_path / "killed.mcap"))
     try:
-        await process.await_line("subscribed to /points", 30)
-        async with asyncio.timeout(20):
-            while talker.publisher.get_subscription_count() < 1:
-                await asyncio.sleep(0.02)
         talker.send(300)
         path = tmp_path / "killed.mcap"
         await wait_until(lambda: recorded(path, "/points") == 300, timeout_s=20, what="the chunk on disk")  # within a second

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections import Counter
 
 from services.core.registry import Registry
-from services.runtime.protocol import Entity, NodeDescription, PublishersFrame
+from services.runtime.protocol import Entity, ForeignNode, NodeDescription, PublishersFrame
 
 TWIST = "geometry_msgs/msg/Twist"
 
@@ -73,3 +73,34 @@ def test_a_publisher_leaving_tells_its_subscribers() -> None:
     registry.unregister("/talker", talker_inbox)
     assert [[p.node for p in f.publishers] for f in received] == [["/talker"], []]
     assert registry.publishers("/x") == [] and registry.topic_type("/x") == TWIST
+
+
+def test_a_bridge_lists_the_ros2_nodes_it_sees_and_they_leave_with_it() -> None:
+    registry = Registry()
+    talker = ForeignNode(
+        name="/talker",
+        system="ros2",
+        publications=[Entity(name="/chatter", type="std_msgs/msg/String")],
+        services=[Entity(name="/add", type="std_srvs/srv/Trigger")],
+    )
+    shadow = ForeignNode(name="/sim", system="ros2")  # a Skydeck node's name: listed once, as Skydeck's
+    bridge = NodeDescription(
+        name="/ros2_bridge", url="http://b", pid=2,
+        publications=[Entity(name="/chatter", type="std_msgs/msg/String")], foreign=[talker, shadow],
+    )
+    registry.register(NodeDescription(name="/sim", url="http://s", pid=1), lambda frame: None)
+    registry.register(bridge, lambda frame: None)
+    graph = registry.graph()
+    nodes = {node["name"]: node for node in graph["nodes"]}
+    assert nodes["/talker"] == {
+        "name": "/talker", "url": "", "pid": None, "publications": ["/chatter"], "subscriptions": [],
+        "services": ["/add"], "system": "ros2", "via": "/ros2_bridge",
+    }
+    assert "system" not in nodes["/sim"]
+    (chatter,) = graph["topics"]
+    assert chatter["publishers"] == ["/ros2_bridge", "/talker"]
+    assert graph["services"] == []  # the bridge hosts a bridged service in Skydeck, not the ROS 2 node
+    assert registry.publishers("/chatter")[0].node == "/ros2_bridge"  # nobody links to a foreign node
+    assert len(registry.publishers("/chatter")) == 1
+    registry.unregister("/ros2_bridge", registry.nodes["/ros2_bridge"].inbox)
+    assert [node["name"] for node in registry.graph()["nodes"]] == ["/sim"]

@@ -77,8 +77,22 @@ def test_an_undeclared_or_missing_argument_is_one_line(tmp_path: Path, given: di
 
 
 def test_a_launch_file_without_arguments_refuses_any(tmp_path: Path) -> None:
-    with pytest.raises(LaunchFileError, match=r"workshop.yaml: x:=1: no such launch argument \(it declares none\)$"):
-        run_launch("workshop", launch_args={"x": "1"})
+    with pytest.raises(LaunchFileError, match=r"robot.yaml: x:=1: no such launch argument \(it declares none\)$"):
+        run_launch("robot", launch_args={"x": "1"})
+
+
+def test_an_argument_with_choices_takes_only_them(tmp_path: Path) -> None:
+    path = _write(
+        tmp_path,
+        'arguments: {fast: {default: "false", choices: [true, false]}}\n'
+        'nodes: [{name: sim, run: sim, port_offset: 1, args: ["--fast", "{fast}"]}]',
+    )
+    assert plan_launch(load_launch_file(path, {"fast": "true"}), LaunchOptions(seed=1))[0].args == ("--fast", "true")
+    with pytest.raises(LaunchFileError, match=r"fast:=maybe: not one of its choices \(true, false\)$"):
+        load_launch_file(path, {"fast": "maybe"})
+    assert "        Valid choices are: ['true', 'false']\n        (default: 'false')" in show_arguments(launch_arguments(path))
+    workshop = launch_arguments("workshop")["start_mission"]  # the AI waits unless told
+    assert (workshop.default, workshop.choices) == ("false", ("true", "false"))
 
 
 @pytest.mark.parametrize(
@@ -88,9 +102,11 @@ def test_a_launch_file_without_arguments_refuses_any(tmp_path: Path) -> None:
          "arguments: 'speed' is a launch option (--speed); choose another name"),
         ('arguments: {"my arg": {}}\nnodes: [{name: sim, run: sim, port_offset: 1}]', "arguments.my arg.[key]: String should match"),
         ("arguments: {a: {defualt: 1}}\nnodes: [{name: sim, run: sim, port_offset: 1}]",
-         "arguments.a.defualt: unknown field (allowed: default, description)"),
+         "arguments.a.defualt: unknown field (allowed: default, description, choices)"),
+        ('arguments: {a: {default: "2", choices: ["0", "1"]}}\nnodes: [{name: sim, run: sim, port_offset: 1}]',
+         "arguments.a: Value error, default '2' is not one of its choices (0, 1)"),
         ('arguments: {a: {}}\nnodes: [{name: sim, run: sim, port_offset: 1, args: ["{b}"]}]',
-         "nodes[0].args[0]: unknown placeholder {b} in '{b}'; known: {speed}, {seed}, {boxes}, {robots}, {base_port}, {a} "
+         "nodes[0].args[0]: unknown placeholder {b} in '{b}'; known: {speed}, {seed}, {boxes}, {robots}, {obstacles}, {base_port}, {a} "
          "(or declare it under `arguments:`)"),
     ],
 )  # fmt: skip
@@ -130,7 +146,7 @@ def test_show_args_lists_yaml_and_roslaunch_arguments(tmp_path: Path) -> None:
         "robot": (None, "which robot"),
         "home": ("$(env HOME)", ""),  # as written: --show-args resolves nothing
     }
-    assert show_arguments(launch_arguments("workshop")).endswith("\n\n  No arguments.")
+    assert show_arguments(launch_arguments("robot")).endswith("\n\n  No arguments.")
 
 
 async def test_the_cli_shows_arguments_and_refuses_unknown_ones_in_one_line(tmp_path: Path) -> None:
@@ -142,7 +158,7 @@ async def test_the_cli_shows_arguments_and_refuses_unknown_ones_in_one_line(tmp_
     status, _, err = await skydeck(url, "launch", str(_write(tmp_path)), "world:=x", "--speed", "2", "nope:=1")
     assert status == 1 and err.count("\n") == 1 and "nope:=1: no such launch argument" in err
     status, _, err = await skydeck(url, "launch", "x:=1")  # no file: the default one's arguments
-    assert status == 1 and err.count("\n") == 1 and "workshop.yaml: x:=1: no such launch argument (it declares none)" in err
+    assert status == 1 and err.count("\n") == 1 and "workshop.yaml: x:=1: no such launch argument (it takes start_mission" in err
     status, _, err = await skydeck(url, "launch", str(_write(tmp_path)), "world")
     assert status == 1 and "launch arguments are NAME:=VALUE" in err
     status, _, err = await skydeck(url, "launch", str(tmp_path / "none.yaml"), "--show-args")

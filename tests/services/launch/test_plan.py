@@ -19,7 +19,6 @@ from services.launch import (
     load_launch_file,
     plan_launch,
 )
-from services.launch.plan import DEFAULT_BOXES
 
 
 def _spec(*nodes: NodeSpec) -> LaunchSpec:
@@ -27,7 +26,7 @@ def _spec(*nodes: NodeSpec) -> LaunchSpec:
 
 
 def test_workshop_plan_with_defaults() -> None:
-    plans = plan_launch(load_launch_file(default_launch_file()), LaunchOptions(seed=42))
+    plans = plan_launch(load_launch_file(default_launch_file(), {}), LaunchOptions(seed=42))
     assert [(plan.name, plan.port) for plan in plans] == [
         ("core", 8000),
         ("sim", 8001),
@@ -50,7 +49,7 @@ def test_options_fill_the_placeholders_and_shift_the_ports() -> None:
             env={"SKYDECK_SIM_SEED": "{seed}"},
         )
     )
-    (plan,) = plan_launch(spec, LaunchOptions(base_port=9100, speed="max", seed=7, boxes=3))
+    (plan,) = plan_launch(spec, LaunchOptions(base_port=9100, speed="max", seed=7, world_options={"boxes": 3}))
     assert plan.port == 9101
     assert plan.args == ("--speed", "max", "--boxes", "3", "--x=9100/7")
     assert plan.env == {"SKYDECK_SIM_SEED": "7"}
@@ -58,7 +57,7 @@ def test_options_fill_the_placeholders_and_shift_the_ports() -> None:
 
 def test_literal_braces_survive() -> None:
     spec = _spec(NodeSpec(name="a", run="a.py", port_offset=0, args=('{{"k": {boxes}}}',)))
-    assert plan_launch(spec, LaunchOptions(boxes=2))[0].args == ('{"k": 2}',)
+    assert plan_launch(spec, LaunchOptions(world_options={"boxes": 2}))[0].args == ('{"k": 2}',)
 
 
 def test_the_core_starts_first_wherever_it_is_listed() -> None:
@@ -78,13 +77,13 @@ def test_without_a_core_the_core_url_is_the_base_port() -> None:
 
 
 def test_exclude_drops_nodes() -> None:
-    spec = load_launch_file(default_launch_file())
+    spec = load_launch_file(default_launch_file(), {})
     plans = plan_launch(spec, LaunchOptions(seed=1, exclude=("ai", "perception")))
     assert [plan.name for plan in plans] == ["core", "sim", "control"]
 
 
 def test_exclude_of_an_unknown_node_is_an_error() -> None:
-    spec = load_launch_file(default_launch_file())
+    spec = load_launch_file(default_launch_file(), {})
     with pytest.raises(
         LaunchError,
         match=r"--exclude names 'planner', which the launch file does not have; its nodes are: core, sim,",
@@ -93,7 +92,7 @@ def test_exclude_of_an_unknown_node_is_an_error() -> None:
 
 
 def test_a_base_port_that_pushes_a_node_past_65535() -> None:
-    spec = load_launch_file(default_launch_file())
+    spec = load_launch_file(default_launch_file(), {})
     with pytest.raises(LaunchError, match="puts the last node on port 65537"):
         plan_launch(spec, LaunchOptions(base_port=65533, seed=1))
 
@@ -110,8 +109,8 @@ def test_seed_placeholder_needs_a_seed() -> None:
 def test_with_seed_keeps_a_given_seed() -> None:
     options = LaunchOptions(seed=5, exclude=("ai",))
     assert options.with_seed() is options
-    drawn = LaunchOptions(base_port=9000, speed="2", boxes=4, exclude=("ai",)).with_seed()
-    assert (drawn.base_port, drawn.speed, drawn.boxes, drawn.exclude) == (9000, "2", 4, ("ai",))
+    drawn = LaunchOptions(base_port=9000, speed="2", world_options={"boxes": 4}, exclude=("ai",)).with_seed()
+    assert (drawn.base_port, drawn.speed, drawn.world_options, drawn.exclude) == (9000, "2", {"boxes": 4}, ("ai",))
 
 
 @pytest.mark.parametrize(
@@ -123,7 +122,9 @@ def test_with_seed_keeps_a_given_seed() -> None:
         ({"speed": "0"}, "--speed must be a positive number"),
         ({"speed": "nan"}, "--speed must be a positive number"),
         ({"seed": -1}, "--seed must be 0-"),
-        ({"boxes": -1}, "--boxes must be 0 or more"),
+        ({"world_options": {"boxes": -1}}, "--boxes must be 0-30, got -1"),
+        ({"world_options": {"boxes": 31}}, "--boxes must be 0-30, got 31"),
+        ({"world_options": {"wheels": 3}}, "--wheels: no world has this option; theirs are boxes, robots, obstacles"),
     ],
 )
 def test_bad_options(options: dict[str, object], message: str) -> None:
@@ -139,10 +140,12 @@ def test_default_command_runs_the_cli() -> None:
     assert default_command(sim) == [*cli, "run", "sim", "--port", "9001", "--seed", "3"]
 
 
-def test_default_boxes_is_the_simulators() -> None:
-    from sim_server.limits import DEFAULT_BOXES as SIM_DEFAULT_BOXES
+def test_a_world_option_not_given_is_its_worlds_default() -> None:
+    from sim_server.drone.limits import DEFAULT_BOXES
+    from sim_server.robot.limits import DEFAULT_OBSTACLES
 
-    assert DEFAULT_BOXES == SIM_DEFAULT_BOXES
+    values = LaunchOptions().placeholders()
+    assert (values["boxes"], values["robots"], values["obstacles"]) == (str(DEFAULT_BOXES), "1", str(DEFAULT_OBSTACLES))
 
 
 def test_public_api() -> None:
@@ -184,7 +187,7 @@ def test_public_api() -> None:
 
 
 def test_endpoint_ports_reach_the_core_as_its_flags() -> None:
-    spec = load_launch_file(default_launch_file())
+    spec = load_launch_file(default_launch_file(), {})
     core, *nodes = plan_launch(spec, LaunchOptions(seed=1, endpoint_ports={"rosbridge": 0, "foxglove": 9876}))
     assert core.args[-4:] == ("--rosbridge-port", "0", "--foxglove-port", "9876")
     assert core.env == {} and all("--rosbridge-port" not in node.args for node in nodes)
@@ -194,7 +197,7 @@ def test_endpoint_ports_reach_the_core_as_its_flags() -> None:
 
 def test_endpoint_ports_move_with_the_base_port_unless_given() -> None:
     """Two launches side by side (issue 32): each core's endpoints move as far as its base port."""
-    spec = load_launch_file(default_launch_file())
+    spec = load_launch_file(default_launch_file(), {})
     first, *_ = plan_launch(spec, LaunchOptions(seed=1, base_port=19340))
     second, *_ = plan_launch(spec, LaunchOptions(seed=1, base_port=19370))
     assert first.args[-4:] == ("--rosbridge-port", "20430", "--foxglove-port", "20105")
@@ -223,10 +226,18 @@ def test_bad_endpoint_ports_are_one_line(options: dict[str, object], says: str) 
 
 
 def test_an_endpoint_moved_past_65535_is_one_line_when_the_launch_starts_a_core() -> None:
-    spec = load_launch_file(default_launch_file())
+    spec = load_launch_file(default_launch_file(), {})
     with pytest.raises(LaunchError, match="--base-port 65000 moves the rosbridge endpoint to port 66090, past 65535"):
         plan_launch(spec, LaunchOptions(seed=1, base_port=65000))
     given = LaunchOptions(seed=1, base_port=65000, endpoint_ports={"rosbridge": 0, "foxglove": 0})
     assert plan_launch(spec, given)[0].args[-4:] == ("--rosbridge-port", "0", "--foxglove-port", "0")
     joining = LaunchOptions(seed=1, base_port=65000, exclude=("core",))  # a running core: none planned
     assert [plan.name for plan in plan_launch(spec, joining)] == ["sim", "perception", "control", "ai"]
+
+def test_ros2_adds_the_bridge_on_the_port_after_the_last() -> None:
+    spec = load_launch_file(services.launch.find_launch_file("robot"))
+    plans = plan_launch(spec, LaunchOptions(seed=1, base_port=9100, ros2=True))
+    assert [(plan.name, plan.port) for plan in plans] == [("core", 9100), ("sim", 9101), ("ros2_bridge", 9102)]
+    assert default_command(plans[-1])[-4:] == ["run", "ros2_bridge", "--port", "9102"]
+    with pytest.raises(LaunchError, match="past 65535"):
+        plan_launch(spec, LaunchOptions(seed=1, base_port=65534, ros2=True))

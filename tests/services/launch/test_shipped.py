@@ -42,26 +42,26 @@ def test_a_bare_name_is_a_shipped_launch_and_anything_else_a_path(tmp_path: Path
 
 def test_the_robot_launch_runs_the_core_and_the_robot_world() -> None:
     spec = load_launch_file(find_launch_file("robot"))
-    plans = plan_launch(spec, LaunchOptions(seed=3, robots=2, speed="max"))
+    plans = plan_launch(spec, LaunchOptions(seed=3, world_options={"robots": 2}, speed="max"))
     assert [(plan.name, plan.run) for plan in plans] == [("core", "core"), ("sim", "sim")]
-    assert plans[1].args == ("--world", "robot", "--speed", "max", "--seed", "3", "--robots", "2")
+    assert plans[1].args == ("--world", "robot", "--speed", "max", "--seed", "3", "--robots", "2", "--obstacles", "4")
     default = plan_launch(spec, LaunchOptions(seed=3))[1]
-    assert default.args[-2:] == ("--robots", "1")
+    assert default.args[-4:] == ("--robots", "1", "--obstacles", "4")
 
 
 @pytest.mark.parametrize("robots", [0, -1, MAX_ROBOTS + 1])
 def test_a_robot_count_out_of_range_is_refused(robots: int) -> None:
     with pytest.raises(LaunchError, match=f"--robots must be 1-{MAX_ROBOTS}, got {robots}"):
-        LaunchOptions(robots=robots)
+        LaunchOptions(world_options={"robots": robots})
 
 
 def test_an_option_the_launch_file_does_not_use_is_refused() -> None:
-    workshop = load_launch_file(default_launch_file())
+    workshop = load_launch_file(default_launch_file(), {})
     robot = load_launch_file(find_launch_file("robot"))
     with pytest.raises(LaunchError, match=r"--robots 2: this launch file does not use it.*skydeck launch robot"):
-        plan_launch(workshop, LaunchOptions(seed=1, robots=2))
+        plan_launch(workshop, LaunchOptions(seed=1, world_options={"robots": 2}))
     with pytest.raises(LaunchError, match=r"--boxes 3: this launch file does not use it"):
-        plan_launch(robot, LaunchOptions(seed=1, boxes=3))
+        plan_launch(robot, LaunchOptions(seed=1, world_options={"boxes": 3}))
 
 
 def test_the_cli_says_one_line_for_a_bad_robot_count() -> None:

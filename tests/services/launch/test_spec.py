@@ -51,7 +51,7 @@ _GOOD = """\
 
 
 def test_default_launch_file_is_the_workshop_system() -> None:
-    spec = load_launch_file(default_launch_file())
+    spec = load_launch_file(default_launch_file(), {})
     assert spec.names == ("core", "sim", "perception", "control", "ai")
     assert [node.port_offset for node in spec.nodes] == [0, 1, 2, 3, 4]
     assert [node.run for node in spec.nodes] == ["core", "sim", "perception", "control", "ai"]

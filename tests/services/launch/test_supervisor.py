@@ -192,7 +192,7 @@ async def test_placeholders_and_env_reach_the_node(launch: Launch) -> None:
     supervisor = launch(
         node("a", 0, env={"EXTRA": "{base_port}/{seed}/{boxes}/{speed}"}),
         seed=7,
-        boxes=3,
+        world_options={"boxes": 3},
         speed="max",
     )
     await supervisor.start()

@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from sim_server.commands import InvalidCommand
+from sim_server.drone.commands import InvalidCommand
 from sim_server.robot.drive import WheelOdometry, check_cmd_vel, wheel_speeds
 from sim_server.robot.limits import (
     MAX_ANGULAR_SPEED,

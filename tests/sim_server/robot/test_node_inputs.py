@@ -10,7 +10,7 @@ from services.runtime import Node
 from shared_models.geometry_msgs import Twist, Vector3
 from shared_models.rcl_interfaces import Log
 from sim_server.robot.node import RobotSimNode
-from sim_server.settings import SimSettings
+from sim_server.robot.settings import RobotSettings
 from tests.conftest import wait_until
 
 
@@ -22,7 +22,7 @@ class Listener(Node):
 
 
 async def test_a_non_finite_twist_from_python_is_refused_with_a_warning(start_node) -> None:  # type: ignore[no-untyped-def]
-    sim = await start_node(lambda settings: RobotSimNode(SimSettings(world="robot", seed=1, speed=1.0), settings))
+    sim = await start_node(lambda settings: RobotSimNode(RobotSettings(seed=1, speed=1.0), settings))
     listener = await start_node(Listener)
     key = ("/rosout", sim.url)  # the listener reads the simulator's /rosout before anything is said
     await wait_until(lambda: key in listener._participant.links, what="the listener's link to the simulator")

@@ -8,7 +8,7 @@ from collections.abc import Callable, Iterator
 
 import pytest
 
-from sim_server.commands import InvalidCommand
+from sim_server.drone.commands import InvalidCommand
 from sim_server.robot.limits import (
     CMD_VEL_TIMEOUT_S,
     LEG_RADIUS_M,

@@ -83,6 +83,22 @@ export function topicUrl(topic, params = {}) {
 
 const sockets = new Set(); // every live TopicSocket, for the debug hook
 
+// The topics someone publishes, from the latest graph (null before the first): a socket opened
+// with openWhenPublished() waits until its topic is one of them.
+let publishedTopics = null;
+const waitingForPublisher = new Set();
+
+/** Each new graph (GET /api/graph): the sockets waiting for a publisher of their topic open. */
+export function updatePublished(graph) {
+  publishedTopics = new Set(graph.topics.filter((t) => t.publishers.length > 0).map((t) => t.name));
+  for (const socket of [...waitingForPublisher]) {
+    if (publishedTopics.has(socket.topic)) {
+      waitingForPublisher.delete(socket);
+      socket.open();
+    }
+  }
+}
+
 export function socketStates() {
   return [...sockets].map((s) => ({
     topic: s.topic,
@@ -98,7 +114,8 @@ export function socketStates() {
  * type on the same socket (never sent back to it). mode "publish" reads nothing, "subscribe"
  * may not publish. encoding "msgpack" reads binary frames (byte arrays arrive as Uint8Array,
  * not base64: for images); such a socket only reads. Reconnects with exponential backoff (0.5 s .. 10 s) until close().
- * onStatus({state, code, reason}) reports "connecting" | "open" | "closed" | "stopped".
+ * onStatus({state, code, reason}) reports "connecting" | "open" | "closed" | "stopped", and
+ * "waiting" for a socket opened with openWhenPublished() whose topic nobody publishes yet.
  */
 export class TopicSocket {
   constructor(topic, { rate, queue, type, mode, encoding, onMessage, onStatus, onError } = {}) {
@@ -126,8 +143,24 @@ export class TopicSocket {
     return this;
   }
 
+  /**
+   * open() once someone publishes the topic (the graph lists a publisher of it). Reading a name
+   * nobody publishes makes the core subscribe to it, so `skydeck topic list -t` would show the
+   * dashboard's guess as a topic with no type; a name of another world never opens. State
+   * "waiting" meanwhile.
+   */
+  openWhenPublished() {
+    if (this._wanted || waitingForPublisher.has(this)) return this;
+    if (publishedTopics && publishedTopics.has(this.topic)) return this.open();
+    waitingForPublisher.add(this);
+    sockets.add(this);
+    this._setState("waiting");
+    return this;
+  }
+
   close() {
     this._wanted = false;
+    waitingForPublisher.delete(this);
     sockets.delete(this);
     clearTimeout(this._timer);
     if (this._ws) {

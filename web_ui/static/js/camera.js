@@ -46,8 +46,9 @@ export class CameraView {
       onMessage: (msg) => this._show(msg, raw),
       onStatus: ({ state }) => {
         if (state === "closed") this.caption.textContent = `${topic}: reconnecting…`;
+        else if (state === "waiting") this.caption.textContent = `nobody publishes ${topic} yet: is the simulator running?`;
       },
-    }).open();
+    }).openWhenPublished();
   }
 
   _show(msg, raw) {

@@ -25,7 +25,7 @@ export class LogConsole {
   }
 
   start() {
-    this.socket = new TopicSocket("/rosout", { queue: 200, onMessage: (msg) => this.add(msg) }).open();
+    this.socket = new TopicSocket("/rosout", { queue: 200, onMessage: (msg) => this.add(msg) }).openWhenPublished();
   }
 
   add(msg) {

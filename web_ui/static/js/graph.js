@@ -109,7 +109,9 @@ export class GraphTables {
       const title = document.createElement("div");
       title.innerHTML = "<strong class='mono'></strong> <span class='dim'></span>";
       title.firstChild.textContent = node.name;
-      title.lastChild.textContent = `${node.url}${node.pid ? `, pid ${node.pid}` : ""}`;
+      title.lastChild.textContent = node.system
+        ? `ROS 2 node, via ${node.via}` // another system's node, seen by a bridge
+        : `${node.url}${node.pid ? `, pid ${node.pid}` : ""}`;
       const detail = document.createElement("div");
       detail.className = "dim small-text";
       detail.textContent =

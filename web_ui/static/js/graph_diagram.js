@@ -74,7 +74,7 @@ export class GraphDiagram {
       );
     }
     for (const v of all) {
-      const group = el("g", { class: `vertex ${v.kind}`, "data-name": v.name });
+      const group = el("g", { class: `vertex ${v.kind}${v.system ? ` ${v.system}` : ""}`, "data-name": v.name });
       if (v.kind === "node") {
         group.append(el("ellipse", { cx: v.x + v.w / 2, cy: v.y + v.h / 2, rx: v.w / 2, ry: v.h / 2 }));
       } else {
@@ -89,7 +89,7 @@ export class GraphDiagram {
         group.addEventListener("click", () => this.onPick(v.name));
       }
       const title = el("title");
-      title.textContent = v.kind === "topic" ? `${v.name} (${v.type})` : v.name;
+      title.textContent = v.kind === "topic" ? `${v.name} (${v.type})` : v.system ? `${v.name} (ROS 2, via ${v.via})` : v.name;
       group.append(title);
       svg.append(group);
     }
@@ -100,10 +100,11 @@ export class GraphDiagram {
 function buildGraph(graph, showDebug) {
   const vertices = new Map();
   const edges = [];
-  const add = (id, kind, name, type) => {
-    if (!vertices.has(id)) vertices.set(id, { id, kind, name, type, w: name.length * CHAR_W + 24, h: kind === "topic" ? 32 : 30 });
+  const add = (id, kind, name, type, system, via) => {
+    if (!vertices.has(id)) vertices.set(id, { id, kind, name, type, system, via, w: name.length * CHAR_W + 24, h: kind === "topic" ? 32 : 30 });
   };
-  for (const node of graph.nodes) add(`n:${node.name}`, "node", node.name);
+  // A node of another system (a ROS 2 node the bridge sees) is drawn apart: `vertex node ros2`.
+  for (const node of graph.nodes) add(`n:${node.name}`, "node", node.name, undefined, node.system, node.via);
   for (const topic of graph.topics) {
     if (!showDebug && HIDDEN_TOPICS.has(topic.name)) continue;
     add(`t:${topic.name}`, "topic", topic.name, topic.type);

@@ -61,7 +61,7 @@ export class Layers extends EventTarget {
         layer.messages += 1;
         this._changed();
       },
-    }).open();
+    }).openWhenPublished(); // a layer kept from another run waits for its topic
     this._layers.set(topic, layer);
     this._save();
     this._changed();

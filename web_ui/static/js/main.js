@@ -1,6 +1,6 @@
 // Wires the dashboard together and exposes a read-only debug hook on `window.skydeck`.
 
-import { socketStates } from "./api.js";
+import { socketStates, updatePublished } from "./api.js";
 import { initTokenButton } from "./auth.js";
 import { CameraView } from "./camera.js";
 import { Commands } from "./commands.js";
@@ -13,13 +13,13 @@ import { LayersPanel } from "./layers_panel.js";
 import { MapView } from "./map.js";
 import { ParametersPanel } from "./parameters.js";
 import { Plots } from "./plots.js";
-import { Room, topicIn } from "./room.js";
+import { ROBOT_TOPICS, Room, topicIn } from "./room.js";
 import { RecorderPanel } from "./recorder.js";
 import { StatusBanner } from "./status.js";
 import { Tabs } from "./tabs.js";
 import { Teleop } from "./teleop.js";
 import { View3DLoader } from "./view3d/loader.js";
-import { World } from "./world.js";
+import { DRONE_TOPICS, World } from "./world.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -106,6 +106,8 @@ const parameters = new ParametersPanel({ node: $("param-node"), table: $("param-
 graph.addEventListener("update", () => {
   commands.updateGraph(graph.graph);
   if (!graph.graph) return;
+  updatePublished(graph.graph); // first: the sockets waiting for a publisher open
+
   tables.render(graph.graph);
   if (tabs.current === "graph") diagram.render(graph.graph);
   inspector.updateGraph(graph.graph);
@@ -187,17 +189,17 @@ function applyWorld() {
     plots.use(room, "robot");
     robots.replaceChildren(...world.namespaces.map((ns) => new Option(ns === "/" ? "robot" : ns.slice(1), ns)));
     robots.hidden = world.namespaces.length < 2;
-    teleop.setTarget("robot", topicIn(world.namespaces[0] || "/", "cmd_vel"));
+    teleop.setTarget("robot", topicIn(world.namespaces[0] || "/", ROBOT_TOPICS.cmd_vel));
   } else {
     room.stop();
     plots.use(world, "drone");
     robots.hidden = true;
-    teleop.setTarget("drone", "/drone/cmd_vel");
+    teleop.setTarget("drone", DRONE_TOPICS.cmd_vel);
   }
   map.fit();
 }
 world.addEventListener("world", applyWorld);
-$("teleop-robot").addEventListener("change", (event) => teleop.setTarget("robot", topicIn(event.target.value, "cmd_vel")));
+$("teleop-robot").addEventListener("change", (event) => teleop.setTarget("robot", topicIn(event.target.value, ROBOT_TOPICS.cmd_vel)));
 status.start();
 const recorder = new RecorderPanel({ toggle: $("record-toggle"), status: $("record-status"), list: $("recording-list") });
 recorder.start();

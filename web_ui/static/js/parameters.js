@@ -98,7 +98,7 @@ export class ParametersPanel {
         onMessage: (event) => {
           if (event.node === this.node) this.load();
         },
-      }).open();
+      }).openWhenPublished();
       if (this.node) this.load();
     } else if (!visible && this.events) {
       this.events.close();

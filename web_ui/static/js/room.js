@@ -1,9 +1,15 @@
 // The robot world as the dashboard knows it: the room's obstacles, the walking person, and per
 // robot its true pose, odometry (and trail), latest scan and bumper, fed by topic sockets through
-// the core. Started once /simulator/world says the robot world runs (see world.js).
+// the core. Started once /simulator/world says the robot world runs (see world.js); the names are
+// the robot world's description's (GET /api/config's worlds.robot.topics), each read once
+// someone publishes it.
 
 import { TopicSocket } from "./api.js";
+import { config } from "./config.js";
 import { isFiniteNumber, stampSeconds, yawOf } from "./geometry.js";
+
+/** The robot world's topics by role; relative ones ("odom") live in each robot's namespace. */
+export const ROBOT_TOPICS = (config.worlds.robot && config.worlds.robot.topics) || {};
 
 const TRAIL_MAX_POINTS = 3000;
 const TRAIL_MIN_STEP_M = 0.02;
@@ -49,24 +55,25 @@ export class Room extends EventTarget {
   /** Subscribe to the room's topics and to each robot's (namespaces from /simulator/world). */
   start(namespaces) {
     if (!this._sockets.length) {
-      this._sub(this._sockets, "/simulator/obstacles", { queue: 2 }, (msg) => this._onObstacles(msg));
-      this._sub(this._sockets, "/simulator/people", { rate: 10 }, (msg) => {
+      this._sub(this._sockets, ROBOT_TOPICS.obstacles, { queue: 2 }, (msg) => this._onObstacles(msg));
+      this._sub(this._sockets, ROBOT_TOPICS.people, { rate: 10 }, (msg) => {
         this.people = (msg.poses || []).map(poseOf);
       });
-      this._sub(this._sockets, "/simulator/robots", { rate: 20 }, (msg) => {
+      this._sub(this._sockets, ROBOT_TOPICS.robots, { rate: 20 }, (msg) => {
         (msg.poses || []).forEach((p, i) => {
           if (this.robots[i]) this.robots[i].pose = poseOf(p);
         });
       });
-      this._sub(this._sockets, "/tf_static", { queue: 4 }, (msg) => this._onStatic(msg));
+      this._sub(this._sockets, ROBOT_TOPICS.tf_static, { queue: 4 }, (msg) => this._onStatic(msg));
     }
     for (const socket of this._robotSockets) socket.close();
     this._robotSockets = [];
     this.robots = namespaces.map((ns, i) => new RobotState(ns, i));
+    const own = (robot, role) => ROBOT_TOPICS[role] && topicIn(robot.namespace, ROBOT_TOPICS[role]);
     for (const robot of this.robots) {
-      this._sub(this._robotSockets, topicIn(robot.namespace, "odom"), { rate: 20 }, (msg) => this._onOdom(robot, msg));
-      this._sub(this._robotSockets, topicIn(robot.namespace, "scan"), { rate: 5 }, (msg) => this._onScan(robot, msg));
-      this._sub(this._robotSockets, topicIn(robot.namespace, "bump"), { rate: 10 }, (msg) => {
+      this._sub(this._robotSockets, own(robot, "odom"), { rate: 20 }, (msg) => this._onOdom(robot, msg));
+      this._sub(this._robotSockets, own(robot, "scan"), { rate: 5 }, (msg) => this._onScan(robot, msg));
+      this._sub(this._robotSockets, own(robot, "bump"), { rate: 10 }, (msg) => {
         robot.bump = msg;
       });
     }
@@ -100,7 +107,7 @@ export class Room extends EventTarget {
   }
 
   _sub(list, topic, options, handler) {
-    list.push(new TopicSocket(topic, { ...options, onMessage: handler }).open());
+    if (topic) list.push(new TopicSocket(topic, { ...options, onMessage: handler }).openWhenPublished());
   }
 
   _onObstacles(msg) {

@@ -1,7 +1,8 @@
 // Connection status: the header pill and the banner that says what is wrong and what to do
 // (core unreachable, simulator absent or not publishing: /drone/pose, or the robot's /odom).
 
-import { topicIn } from "./room.js";
+import { ROBOT_TOPICS, topicIn } from "./room.js";
+import { DRONE_TOPICS } from "./world.js";
 
 const STALE_POSE_S = 2;
 const STARTUP_GRACE_MS = 3000; // sockets are still connecting: no "not publishing" yet
@@ -37,7 +38,7 @@ export class StatusBanner {
       const nodes = graph.graph.nodes.length;
       this._pill("ok", `core ok · ${nodes} node${nodes === 1 ? "" : "s"}`);
       const robot = world.kind === "robot" && this.room.robots.length > 0;
-      const name = robot ? topicIn(this.room.robots[0].namespace, "odom") : "/drone/pose";
+      const name = robot ? topicIn(this.room.robots[0].namespace, ROBOT_TOPICS.odom) : DRONE_TOPICS.pose;
       const pose = graph.graph.topics.find((t) => t.name === name);
       const age = robot ? this.room.odomAgeSeconds() : world.poseAgeSeconds();
       if (!pose || !pose.publishers.length) {

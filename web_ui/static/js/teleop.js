@@ -42,7 +42,7 @@ export class Teleop {
     this.note = note;
     this.topicLabel = topicLabel;
     this.kind = "drone";
-    this.topic = "/drone/cmd_vel";
+    this.topic = config.worlds.drone ? config.worlds.drone.topics.cmd_vel : "";
     this.speed = speed;
     this.speedLabel = speedLabel;
     this.keysView = keysView;

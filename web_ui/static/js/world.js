@@ -1,10 +1,17 @@
 // The workshop system as the dashboard knows it: which world the simulator runs (from the latched
 // /simulator/world), and for the drone world the latest pose, its track and history, the boxes,
 // the AI's status and control's state, fed by topic sockets through the core. The robot world's
-// state lives in room.js.
+// state lives in room.js. The drone world's names come from its description (GET /api/config's
+// worlds.drone.topics) and are read only while no other world runs and once someone publishes
+// each: the dashboard never subscribes to another world's names, nor creates a topic.
 
 import { TopicSocket } from "./api.js";
+import { config } from "./config.js";
 import { isFiniteNumber, stampSeconds, yawOf } from "./geometry.js";
+
+/** The drone world's topics by role ({pose: "/drone/pose", ...}), as the core describes them. */
+export const DRONE_TOPICS = (config.worlds.drone && config.worlds.drone.topics) || {};
+const WORLD_TOPIC = "/simulator/world"; // every world's (the simulator's floor)
 
 const TRACK_MAX_POINTS = 3000;
 const TRACK_MIN_STEP_M = 0.05;
@@ -24,36 +31,52 @@ export class World extends EventTarget {
     this.controlState = null;
     this.droneState = null;
     this.flyTarget = null; // the last clicked target {x, y}
-    this.kind = null; // "drone" | "robot" once /simulator/world has said; null before
+    this.kind = null; // "drone" | "robot" (a world's name) once /simulator/world has said; null before
     this.namespaces = []; // the robot world's robots: ["/"] or ["/robot1", "/robot2", ...]
     this._speedRef = null; // an earlier pose to differentiate against
-    this._sockets = [];
+    this._worldSocket = null;
+    this._droneSockets = [];
   }
 
+  /** Read /simulator/world, and the drone world's topics until it names another world: the
+   * default world (a recording played with no simulator shows too). Each is read once someone
+   * publishes it, so another world's names never are. */
   start() {
-    const sub = (topic, options, handler) => {
-      const socket = new TopicSocket(topic, { ...options, onMessage: handler });
-      this._sockets.push(socket);
-      return socket.open();
+    this._worldSocket = new TopicSocket(WORLD_TOPIC, { queue: 2, onMessage: (msg) => this._onWorld(msg) }).openWhenPublished();
+    this._startDrone();
+  }
+
+  _startDrone() {
+    if (this._droneSockets.length) return;
+    const sub = (role, options, handler) => {
+      const name = DRONE_TOPICS[role];
+      if (!name) return;
+      const socket = new TopicSocket(name, { ...options, onMessage: handler });
+      this._droneSockets.push(socket);
+      socket.openWhenPublished();
     };
-    sub("/simulator/world", { queue: 2 }, (msg) => this._onWorld(msg));
-    this.poseSocket = sub("/drone/pose", { rate: 30 }, (msg) => this._onPose(msg));
-    sub("/simulator/boxes", { rate: 2 }, (msg) => {
+    sub("pose", { rate: 30 }, (msg) => this._onPose(msg));
+    sub("boxes", { rate: 2 }, (msg) => {
       this.simBoxes = (msg.poses || []).map((p) => ({ x: p.position.x, y: p.position.y, yaw: yawOf(p.orientation) }));
     });
-    sub("/perception/boxes", { rate: 2 }, (msg) => {
+    sub("perception_boxes", { rate: 2 }, (msg) => {
       this.perceptionBoxes = (msg.points || []).map((p) => ({ x: p.x, y: p.y, z: p.z }));
     });
-    sub("/ai/status", { queue: 10 }, (msg) => {
+    sub("ai_status", { queue: 10 }, (msg) => {
       this.aiStatus = msg;
       this._emit("ai-status");
     });
-    sub("/control/state", { rate: 10 }, (msg) => {
+    sub("control_state", { rate: 10 }, (msg) => {
       this.controlState = msg;
     });
-    sub("/drone/state", { rate: 2 }, (msg) => {
+    sub("state", { rate: 2 }, (msg) => {
       this.droneState = msg;
     });
+  }
+
+  _stopDrone() {
+    for (const socket of this._droneSockets) socket.close();
+    this._droneSockets = [];
   }
 
   /** Seconds since the last /drone/pose frame, or Infinity when none came yet. */
@@ -67,11 +90,13 @@ export class World extends EventTarget {
   }
 
   _onWorld(msg) {
-    const kind = msg.world === "robot" ? "robot" : "drone";
+    const kind = typeof msg.world === "string" && msg.world ? msg.world : "drone";
     const namespaces = Array.isArray(msg.namespaces) ? msg.namespaces.filter((ns) => typeof ns === "string") : [];
     if (kind === this.kind && namespaces.join() === this.namespaces.join()) return;
     this.kind = kind;
     this.namespaces = namespaces;
+    if (kind === "drone") this._startDrone();
+    else this._stopDrone();
     this._emit("world");
   }
 

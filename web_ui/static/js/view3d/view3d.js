@@ -41,8 +41,10 @@ export class View3D {
 
   /** Subscribe to TF and the world, restore the last visit's settings. */
   start() {
+    // Read once someone publishes them (the robot world, a user's node): rviz's subscription
+    // would otherwise make the core list /tf untyped in a world without TF.
     const tf = (topic, isStatic) =>
-      new TopicSocket(topic, { queue: TF_QUEUE, mode: "subscribe", onMessage: (msg) => this.tf.applyMessage(msg, isStatic) }).open();
+      new TopicSocket(topic, { queue: TF_QUEUE, mode: "subscribe", onMessage: (msg) => this.tf.applyMessage(msg, isStatic) }).openWhenPublished();
     this._sockets.push(tf("/tf", false), tf("/tf_static", true));
     this.world.start();
     const stored = loadStored(hasDisplay);

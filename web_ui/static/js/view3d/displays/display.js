@@ -61,9 +61,10 @@ export class Display {
         if (state === "closed" && code !== 1000) {
           this.setStatus("Topic", "error", `connection closed (${code}${reason ? `: ${reason}` : ""}); reconnecting…`);
         }
+        else if (state === "waiting") this.setStatus("Topic", "warn", "nobody publishes it yet");
         else if (state === "open" && !this.received) this.setStatus("Topic", "warn", "no messages received yet");
       },
-    }).open();
+    }).openWhenPublished();
   }
 
   stop() {

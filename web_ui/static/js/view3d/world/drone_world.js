@@ -76,11 +76,14 @@ export class DroneWorld {
   }
 
   start() {
-    const open = (topic, rate, handler) => this._sockets.push(new TopicSocket(topic, { rate, mode: "subscribe", onMessage: handler }).open());
-    open("/drone/pose", 30, (msg) => {
+    // The drone world's names, from its description; read once someone publishes them (never in
+    // another world).
+    const open = (topic, rate, handler) =>
+      this._sockets.push(new TopicSocket(topic, { rate, mode: "subscribe", onMessage: handler }).openWhenPublished());
+    open(this.arena.topics.pose, 30, (msg) => {
       this._pose = msg;
     });
-    open("/simulator/boxes", 2, (msg) => {
+    open(this.arena.topics.boxes, 2, (msg) => {
       this._boxes = msg;
     });
   }

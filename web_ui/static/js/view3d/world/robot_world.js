@@ -63,7 +63,7 @@ export class RobotWorld {
     this.room = room;
     this.tf = tf;
     this.root = new THREE.Group();
-    this.obstacles = new MarkerDisplay("/simulator/obstacles", "visualization_msgs/msg/MarkerArray", {}, env);
+    this.obstacles = new MarkerDisplay(room.topics.obstacles, "visualization_msgs/msg/MarkerArray", {}, env);
     this.root.add(this.obstacles.root);
     this.people = new THREE.Group();
     this.root.add(this.people);
@@ -79,13 +79,13 @@ export class RobotWorld {
 
   start() {
     this.obstacles.start();
-    this._socket = new TopicSocket("/simulator/people", {
+    this._socket = new TopicSocket(this.room.topics.people, {
       rate: 10,
       mode: "subscribe",
       onMessage: (msg) => {
         this._peopleMsg = msg;
       },
-    }).open();
+    }).openWhenPublished(); // the robot world's: never read in another
   }
 
   stop() {
