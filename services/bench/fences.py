@@ -26,7 +26,7 @@ from typing import Any
 from websockets.asyncio.client import connect
 
 from services.access import RateLimits, make_class_tokens, write_tokens
-from services.bench.processes import BenchError, Worker, free_port, wait_http, worker_env
+from services.bench.processes import Worker, start_core, worker_env
 from services.runtime.edge.links import stream_url
 
 __all__ = ["measure_fences", "spend_ns"]
@@ -38,25 +38,14 @@ _TIMEOUT_S = 120.0
 def _start_core(mode: str, folder: Path) -> tuple[Worker, str, str]:
     """A core with no class (``open``) or a class of one student (``class``); its URL and the
     token to publish with."""
-    port = free_port()
-    args = ["core", "--port", str(port), "--log-level", "warning", "--rosbridge-port", "0", "--foxglove-port", "0"]
-    token = ""
-    env = worker_env()
-    if mode == "class":
-        tokens = make_class_tokens(["alice"])
-        path = folder / "class-tokens.csv"
-        write_tokens(path, tokens)
-        args += ["--class-tokens", str(path)]
-        env |= {"SKYDECK_STUDENT_MESSAGES_PER_S": "1e12", "SKYDECK_STUDENT_BYTES_PER_S": "1e15"}
-        token = tokens["alice"]
-    worker = Worker(f"fences-core-{mode}", "services.cli", *args, env=env)
-    url = f"http://127.0.0.1:{port}"
-    try:
-        wait_http(f"{url}/health", 20.0, what="skydeck core", worker=worker)
-    except BenchError:
-        worker.stop()
-        raise
-    return worker, url, token
+    if mode == "open":
+        return (*start_core("fences-core-open"), "")
+    tokens = make_class_tokens(["alice"])
+    path = folder / "class-tokens.csv"
+    write_tokens(path, tokens)
+    limits = {"SKYDECK_STUDENT_MESSAGES_PER_S": "1e12", "SKYDECK_STUDENT_BYTES_PER_S": "1e15"}  # nothing is shed
+    worker, url = start_core("fences-core-class", flags=("--class-tokens", str(path)), env=worker_env(**limits))
+    return worker, url, tokens["alice"]
 
 
 async def _publish(url: str, token: str, messages: int) -> None:
