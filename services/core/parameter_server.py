@@ -23,7 +23,7 @@ from fastapi import APIRouter, Depends, HTTPException, Request
 from pydantic import BaseModel, StringConstraints
 
 from services.access import Verb
-from services.core.visitors import VisitorDep, require
+from services.core.visitors import FENCED, VisitorDep, require
 from services.runtime.rosparam import PARAMETER_TOKEN, check_parameter_value, parameter_tokens
 
 __all__ = ["ParameterTree", "router"]
@@ -114,8 +114,8 @@ _BAD_VALUE: dict[int | str, dict[str, Any]] = {
 _UNSET: dict[int | str, dict[str, Any]] = {404: {"description": "No such parameter"}}
 
 
-@router.get("", responses=_UNSET | _BAD_NAME)
-@router.get("/{name:path}", responses=_UNSET | _BAD_NAME)
+@router.get("", responses=FENCED | _UNSET | _BAD_NAME)
+@router.get("/{name:path}", responses=FENCED | _UNSET | _BAD_NAME)
 async def get_parameter(tree: TreeDep, visitor: VisitorDep, name: ParameterName = "") -> NamedValue:
     """A parameter's value; a namespace's is the mapping of what is under it."""
     full = "/" + name.strip("/")
@@ -126,8 +126,8 @@ async def get_parameter(tree: TreeDep, visitor: VisitorDep, name: ParameterName 
         raise HTTPException(404, f"no parameter {full}: see GET /api/rosparam for all") from None
 
 
-@router.put("", responses=_BAD_VALUE)
-@router.put("/{name:path}", responses=_BAD_VALUE)
+@router.put("", responses=FENCED | _BAD_VALUE)
+@router.put("/{name:path}", responses=FENCED | _BAD_VALUE)
 async def set_parameter(body: ParameterValue, tree: TreeDep, visitor: VisitorDep, name: ParameterName = "") -> NamedValue:
     """Set a parameter (a mapping sets the whole namespace under the name)."""
     full = "/" + name.strip("/")
@@ -139,7 +139,7 @@ async def set_parameter(body: ParameterValue, tree: TreeDep, visitor: VisitorDep
     return NamedValue(name=full, value=body.value)
 
 
-@router.delete("/{name:path}", responses=_UNSET | _BAD_NAME)
+@router.delete("/{name:path}", responses=FENCED | _UNSET | _BAD_NAME)
 async def delete_parameter(tree: TreeDep, visitor: VisitorDep, name: ParameterName) -> NamedValue:
     """Delete a parameter and everything under it; the answer holds what was deleted."""
     full = "/" + name.strip("/")

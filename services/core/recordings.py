@@ -37,7 +37,7 @@ from services.bag.recording import Limits, Recording, TopicSelection
 from services.bag.writer import BagWriter
 from services.core.core_node import CoreNode
 from services.core.registry import Registry
-from services.core.visitors import VisitorDep, require
+from services.core.visitors import FENCED, VisitorDep, require
 from services.runtime.subscription import RawSubscription
 from shared_models import Message, resolve_name
 
@@ -252,7 +252,7 @@ def _require_reading(visitor: Pass) -> None:
         require(visitor, Verb.READ, "/api/recordings")
 
 
-@router.get("")
+@router.get("", responses=FENCED)
 async def list_recordings(recordings: RecordingsDep, visitor: VisitorDep) -> dict[str, Any]:
     """The recordings folder: its files (newest first) and the recording in progress, if any (a
     student sees their own)."""
@@ -266,7 +266,9 @@ async def list_recordings(recordings: RecordingsDep, visitor: VisitorDep) -> dic
     return {"folder": str(recordings.folder), "current": current, "files": files}
 
 
-@router.post("", responses={409: {"description": "Already recording"}})
+@router.post(
+    "", responses=FENCED | {404: {"description": "A topic is not a ROS name"}, 409: {"description": "Already recording"}}
+)
 async def start_recording(
     recordings: RecordingsDep, visitor: VisitorDep, request: Annotated[StartRecording | None, Body()] = None
 ) -> dict[str, Any]:
@@ -277,7 +279,7 @@ async def start_recording(
     return recordings.start(request, owner=visitor.subject.name)
 
 
-@router.post("/stop", responses={409: {"description": "Nothing to stop"}})
+@router.post("/stop", responses=FENCED | {409: {"description": "Nothing to stop"}})
 async def stop_recording(recordings: RecordingsDep, visitor: VisitorDep) -> dict[str, Any]:
     """Stop the recording in progress and finish its file."""
     if visitor.subject.role is Role.ANONYMOUS:
@@ -289,7 +291,7 @@ async def stop_recording(recordings: RecordingsDep, visitor: VisitorDep) -> dict
     return await recordings.stop()
 
 
-@router.get("/{name}", response_class=FileResponse, responses={404: {"description": "No such recording"}})
+@router.get("/{name}", response_class=FileResponse, responses=FENCED | {404: {"description": "No such recording"}})
 async def download_recording(name: str, recordings: RecordingsDep, visitor: VisitorDep) -> FileResponse:
     """Download one recording (an MCAP file: `skydeck bag info`, Foxglove, Lichtblick)."""
     _require_reading(visitor)

@@ -25,7 +25,7 @@ from services.runtime.edge.outbox import Frame
 from services.runtime.edge.topic_socket import TopicConnection
 from services.runtime.endpoint import TopicEndpoint
 
-__all__ = ["FencedEndpoint", "VisitorDep", "core_fences", "require", "router", "visitor"]
+__all__ = ["FENCED", "FencedEndpoint", "VisitorDep", "core_fences", "require", "router", "visitor"]
 
 logger = logging.getLogger("skydeck.core")
 
@@ -80,6 +80,12 @@ def visitor(request: Request) -> Pass:
 
 
 VisitorDep = Annotated[Pass, Depends(visitor)]
+
+FENCED: dict[int | str, dict[str, Any]] = {
+    401: {"description": "A token is needed (the process token's, or in a class your class token)"},
+    403: {"description": "The token may not do this (a class's fences: docs/security.md)"},
+}
+"""The statuses of a fenced route, for its OpenAPI ``responses``."""
 
 
 def require(visitor: Pass, verb: Verb, name: str) -> None:
