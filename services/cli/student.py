@@ -17,7 +17,9 @@ fences when it registers, in one line, all the same.
 
 from __future__ import annotations
 
+import json
 import logging
+import urllib.request
 
 from services.access.policy import Role
 from services.cli.errors import CliError
@@ -34,14 +36,13 @@ def ask_namespace(core_url: str, token: str) -> str | None:
     is not a student's, there is none, or the core cannot say."""
     if not token:
         return None
-    import httpx  # here: only `skydeck run` with a token needs it
-
+    # urllib, not httpx: the CLI has it loaded already, and every `skydeck run` with a token
+    # (each node of a launch that has one) asks, before its program starts.
+    request = urllib.request.Request(core_url.rstrip("/") + "/api/access", headers={"Authorization": f"Bearer {token}"})
     try:
-        reply = httpx.get(
-            core_url.rstrip("/") + "/api/access", headers={"Authorization": f"Bearer {token}"}, timeout=3.0
-        )
-        described = reply.json() if reply.status_code == 200 else {}
-    except (httpx.HTTPError, ValueError) as error:
+        with urllib.request.urlopen(request, timeout=3.0) as reply:
+            described = json.loads(reply.read())
+    except (OSError, ValueError) as error:  # URLError and HTTPError are OSErrors
         logger.debug("could not ask the core at %s who the token is: %s", core_url, error)
         return None
     if not isinstance(described, dict) or described.get("role") != Role.STUDENT.value:

@@ -22,6 +22,7 @@ import pytest
 from websockets.asyncio.client import connect
 from websockets.exceptions import ConnectionClosed
 
+from services.access import make_class_tokens, write_tokens
 from services.runtime import Node
 from services.runtime.edge.links import stream_url
 from shared_models.geometry_msgs import Twist, Vector3
@@ -318,3 +319,16 @@ async def test_a_core_with_a_bad_tokens_file_stops_in_one_line(tmp_path: Path, t
     assert process.returncode == 1
     lines = out.decode().strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith(f"skydeck: error: {tokens} {said}"), lines
+
+
+async def test_a_core_with_class_rules_naming_a_stranger_stops_in_one_line(tmp_path: Path) -> None:
+    tokens, rules = tmp_path / "class-tokens.csv", tmp_path / "class-rules.yaml"
+    write_tokens(tokens, make_class_tokens(["alice", "bob"]))
+    rules.write_text("reads:\n  carol: [/bob/**]\n")
+    process = await asyncio.create_subprocess_exec(
+        sys.executable, "-m", "services.cli", "core", "--port", "0", "--class-tokens", str(tokens), "--class-rules", str(rules),
+        cwd=REPO, stdout=asyncio.subprocess.PIPE, stderr=asyncio.subprocess.STDOUT,
+    )  # fmt: skip
+    out, _ = await asyncio.wait_for(process.communicate(), 30)
+    assert process.returncode == 1
+    assert out.decode().strip().splitlines() == [f"skydeck: error: {rules}: reads names carol, who have no token in {tokens}"]
