@@ -5,9 +5,11 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 ROS2_STAMP := $(VENV)/.installed-ros2
 
-.PHONY: install install-ros2 install-vision up robot test test-deps lint bench clean
+.PHONY: install install-ros2 install-vision bytecode up robot test test-deps lint bench clean
 
-install: $(STAMP)
+# The last line says how a new terminal finds `skydeck` (tests/services/launch/test_next_steps.py).
+install: $(STAMP) bytecode
+	@echo "skydeck is installed in $(VENV)/bin; in each new terminal, first: source $(abspath $(VENV))/bin/activate"
 
 # Reinstall only when the lock or the project metadata change, so `make install` is idempotent.
 $(STAMP): requirements.lock pyproject.toml web_ui/vendor/package-lock.json tests/clients/package-lock.json
@@ -17,6 +19,12 @@ $(STAMP): requirements.lock pyproject.toml web_ui/vendor/package-lock.json tests
 	cd web_ui/vendor && npm ci --silent --no-audit --no-fund
 	cd tests/clients && npm ci --silent --no-audit --no-fund
 	touch $(STAMP)
+
+# The project's own modules as bytecode, written here: where PYTHONDONTWRITEBYTECODE is set (CI,
+# containers, sandboxes) every process would compile them again at each start, 0.1-0.2 s of CPU
+# each (docs/performance.md). Only changed files are compiled again.
+bytecode: $(STAMP)
+	@$(BIN)/python -m compileall -q -j 0 services shared_models sim_server
 
 # The ROS 2 bridge's extra (heavy: rclpy, Fast DDS, rosidl): its lock, then the interface
 # packages no wheel ships, built with rosidl into the venv (again only when Skydeck's
@@ -39,11 +47,11 @@ $(VENV)/.vision-installed: $(STAMP) requirements-vision.lock
 # The drone workshop, the drone landed and the AI waiting for /ai/start (the dashboard's Start
 # mission button); `make up MISSION=true` starts the AI's mission at once.
 MISSION ?= false
-up: install
+up: $(STAMP) bytecode
 	$(BIN)/skydeck launch start_mission:=$(MISSION)
 
 # The robot world (the second seed's Neato class): the core and the simulator's room.
-robot: install
+robot: $(STAMP) bytecode
 	$(BIN)/skydeck launch robot
 
 # System packages the tests drive for real: Debian's Chromium (browser tests), the
@@ -57,16 +65,16 @@ test-deps:
 		ldconfig -p | grep -q 'libEGL.so.1 ' && ls /usr/lib/*/dri/swrast_dri.so >/dev/null 2>&1 || \
 		{ apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium docker-compose zsh cmake g++ make iproute2 libegl1 libgl1-mesa-dri >/dev/null; }
 
-test: install install-vision test-deps install-ros2
+test: $(STAMP) install-vision test-deps install-ros2
 	docker-compose -f docker-compose.yml config --quiet
 	docker-compose -f docker-compose.yml -f docker-compose.robot.yml config --quiet
 	$(BIN)/python -m pytest -q
 
-lint: install
+lint: $(STAMP)
 	$(BIN)/ruff check .
-	$(BIN)/mypy services shared_models sim_server
+	$(BIN)/mypy services shared_models sim_server benchmarks
 
-bench: install
+bench: $(STAMP) bytecode
 	$(BIN)/skydeck bench --out bench.json
 
 clean:

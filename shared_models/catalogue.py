@@ -32,6 +32,7 @@ MESSAGE_PACKAGES = (
     "mavros_msgs",
     "ros_workshop",
     "skydeck_launch",
+    "skydeck_opencv",
 )
 
 _loaded = False

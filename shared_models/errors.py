@@ -19,6 +19,7 @@ launcher and the CLI all descend from one class. The whole tree::
     │   ├── ServiceCallRejectedError       4xx   -     its node refused the request
     │   └── ServiceCallFailed              its   -     a call through the core reached no service
     ├── ServiceHandlerError                500   -     a handler raised or returned the wrong type
+    ├── GoalTransitionError                 -    -     an action goal moved as ROS 2's state machine forbids
     ├── RegistrationRejected                -    -     the core refused a node's session
     ├── ClassTokensError                   400   -     a roster name, tokens file or class rules file that cannot be used
     ├── AccessRefused                      403  1008   a class's fences: the subject may not (services/access/policy.py)
@@ -42,6 +43,7 @@ launcher and the CLI all descend from one class. The whole tree::
     ├── TransformException                  -    -     tf2's, with its subclasses (services/ros/tf2_ros/exceptions.py)
     ├── TypeException (TypeError)           -    -     Buffer.transform of an unregistered type (tf2_ros)
     ├── CvBridgeError (TypeError)           -    -     an image cv_bridge cannot convert (services/ros/cv_bridge/)
+    ├── HighGuiError (cv2.error)            -    -     an OpenCV window call Skydeck cannot honour (services/ros/highgui/)
     ├── CdrError (ValueError)               -    -     a value that does not fit its CDR, or bytes that are no message (shared_models/cdr.py)
     ├── NotBridged, TypeNotAvailable        -    -     a type the ROS 2 bridge cannot carry (services/protocols/ros2/)
     ├── BuildFailed                         -    -     a ROS 2 interface package did not build (its cmake output's tail)

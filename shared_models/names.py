@@ -1,7 +1,8 @@
 """ROS names of topics, services and nodes.
 
-A valid absolute name is ``/`` followed by one or more tokens ``[A-Za-z][A-Za-z0-9_]*`` separated
-by single ``/``: ``/drone/pose``. Relative names (``perception/boxes``) are resolved against a
+A valid absolute name is ``/`` followed by one or more tokens ``[A-Za-z_][A-Za-z0-9_]*`` separated
+by single ``/``: ``/drone/pose``. A token may start with ``_`` as in ROS 2, whose hidden names
+(an action's ``/fibonacci/_action/send_goal``) do; never with a digit. Relative names (``perception/boxes``) are resolved against a
 namespace. There is no ``~`` (private names) and no trailing ``/``. Names under the core's own
 routes (:data:`RESERVED_PREFIXES`) are refused, since topics and services are URL paths too.
 
@@ -66,9 +67,9 @@ def _check_tokens(name: str, start: int) -> None:
     for token in name[start:].split("/"):
         if not token:
             raise InvalidNameError(name, f"empty token at position {position}")
-        if not token[0].isalpha():
+        if not (token[0].isalpha() or token[0] == "_"):
             raise InvalidNameError(
-                name, f"token {token!r} at position {position} must start with a letter"
+                name, f"token {token!r} at position {position} must start with a letter or '_'"
             )
         position += len(token) + 1
 

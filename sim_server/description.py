@@ -23,14 +23,18 @@ class WorldDescription:
     uses, by role (``{"pose": "/drone/pose"}``), the simulator's and its workshop nodes'; a
     relative name (``odom``) is one per robot, under each namespace ``/simulator/world`` lists.
     Every world also has the floor's names (``/clock``, ``/simulator/world``, the camera,
-    ``/simulator/reset``), which are not repeated here.
+    ``/simulator/reset``), which are not repeated here. ``extends``: the world this one is built
+    on, whose every constant and name it keeps (the soccer room is the robot world with a ball),
+    so a client of that world may show this one as it (the dashboard does).
     """
 
     constants: Mapping[str, Any]
     topics: Mapping[str, str] = field(default_factory=dict)
     services: Mapping[str, str] = field(default_factory=dict)
+    extends: str | None = None
 
     def config(self) -> dict[str, Any]:
-        """The world's part of ``/api/config``: its constants, and its names under ``topics``
-        and ``services``."""
-        return {**self.constants, "topics": dict(self.topics), "services": dict(self.services)}
+        """The world's part of ``/api/config``: its constants, its names under ``topics`` and
+        ``services``, and ``extends`` if it has one."""
+        extends = {"extends": self.extends} if self.extends else {}
+        return {**self.constants, "topics": dict(self.topics), "services": dict(self.services), **extends}

@@ -3,11 +3,14 @@
 
     drone   the workshop's drone and falling boxes     skydeck launch           (workshop.yaml)
     robot   Neato robots in a room, a walking person   skydeck launch robot     (robot.yaml)
+    soccer  the robot world, a ball, robots' cameras   skydeck launch soccer    (soccer.yaml)
 
 A row names its world's parts by import path, loaded only when asked for: reading the table
 loads no world, and the core and the launcher never load PyBullet. A new world is one package
 (its node, settings and description, on the floor of :mod:`sim_server.world_node`,
-:mod:`sim_server.settings` and :mod:`sim_server.description`) and one row here.
+:mod:`sim_server.settings` and :mod:`sim_server.description`) and one row here; a world built
+on another (the soccer room on the robot world) imports that world's package too, and says so
+in its description (``extends``).
 """
 
 from __future__ import annotations
@@ -115,6 +118,14 @@ WORLDS: dict[str, WorldEntry] = {
             description="sim_server.robot.description:DESCRIPTION",
             launch_file="robot",
         ),
+        WorldEntry(
+            name="soccer",
+            summary="the robot world with a ball to push and a camera on every robot",
+            node="sim_server.soccer.node:SoccerSimNode",
+            settings="sim_server.soccer.settings:SoccerSettings",
+            description="sim_server.soccer.description:DESCRIPTION",
+            launch_file="soccer",
+        ),
     )
 }
 """Every world, by name; the first is the default."""
@@ -142,12 +153,14 @@ def worlds_config() -> dict[str, dict[str, Any]]:
 
 
 def world_options() -> dict[str, WorldOption]:
-    """Every world's own options, by name (their settings classes' fields beyond every world's)."""
-    options = {}
+    """Every world's own options, by name (their settings classes' fields beyond every world's).
+    An option a world shares with the world it extends (the soccer room's ``--robots``) is the
+    first world's, which declared it."""
+    options: dict[str, WorldOption] = {}
     for entry in WORLDS.values():
         settings = entry.settings_type()
         for name in settings.own_options():
             field = settings.model_fields[name]
             low, high = settings.option_range(name)
-            options[name] = WorldOption(name, entry.name, field.default, low, high, field.description or name)
+            options.setdefault(name, WorldOption(name, entry.name, field.default, low, high, field.description or name))
     return options

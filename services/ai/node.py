@@ -120,7 +120,14 @@ class AiNode(Node):
         ai: AiSettings | None = None,
         store: ProgressStore | None = None,
     ) -> None:
-        super().__init__("ai", settings=settings or node_settings().with_default_port(DEFAULT_PORT))
+        if settings is None:
+            settings = node_settings().with_default_port(DEFAULT_PORT)
+            # A node of the simulated world: it follows the simulator's clock unless told otherwise
+            # (SKYDECK_USE_SIM_TIME=false, -p use_sim_time:=false), so /ai/status is stamped in sim
+            # time as the simulator's and control's messages are, also when run by hand.
+            if "use_sim_time" not in settings.model_fields_set:
+                settings = settings.model_copy(update={"use_sim_time": True})
+        super().__init__("ai", settings=settings)
         self.ai = ai or AiSettings()
         # The landing policy is a parameter too (`-p landing:=home`, `skydeck param set /ai landing
         # home`), its default the flag's; a new value applies from the next tour planned.

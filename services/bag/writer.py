@@ -27,7 +27,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import IO, Literal
 
-from services.bag import cdr
+from services.bag.cdr import CDR_ENCODING, CDR_PROFILE, cdr_schema, frame_encoder
+from services.bag.cdr import SCHEMA_ENCODING as CDR_SCHEMA_ENCODING
 from services.bag.errors import BagError
 from services.bag.mcap_file import McapFile
 from services.bag.schemas import (
@@ -81,7 +82,7 @@ class BagWriter:
         self.encoding = encoding
         self._stream = stream
         self._mcap = McapFile(stream, chunk_size=CHUNK_SIZE)
-        self._mcap.start(profile=cdr.CDR_PROFILE if encoding == "cdr" else PROFILE, library=LIBRARY)
+        self._mcap.start(profile=CDR_PROFILE if encoding == "cdr" else PROFILE, library=LIBRARY)
         self._mcap.add_metadata(METADATA_NAME, metadata)
         self._stream.flush()
         self._schemas: dict[str, int] = {}
@@ -118,9 +119,9 @@ class BagWriter:
             return channel.id
         msg_type = message_type(type_name)
         if self.encoding == "cdr":
-            schema_name, schema = cdr.cdr_schema(topic, type_name)
-            schema_encoding, message_encoding = cdr.SCHEMA_ENCODING, cdr.CDR_ENCODING
-            encode = cdr.frame_encoder(type_name)
+            schema_name, schema = cdr_schema(topic, type_name)
+            schema_encoding, message_encoding = CDR_SCHEMA_ENCODING, CDR_ENCODING
+            encode = frame_encoder(type_name)
         else:
             schema_name, schema = type_name, b""
             schema_encoding, message_encoding, encode = SCHEMA_ENCODING, MESSAGE_ENCODING, None

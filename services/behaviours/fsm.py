@@ -38,7 +38,7 @@ class SquareThenWall(RobotBehaviour):
         self.declare_parameter("near", 0.5)  # m: something this close ahead ends the squares
         self.declare_parameter("wall_side", "right")  # the side the wall is kept on
         self.declare_parameter("wall_distance", 0.5)  # m
-        self.state_publisher = self.create_publisher(String, self.topic("fsm/state"), 1, latched=True)
+        self.state_publisher = self.create_publisher(String, "fsm/state", 1, latched=True)
         self.square = self._new_square()
         self.follower = WallFollower(
             self.get_parameter("wall_side").value, self.get_parameter("wall_distance").value, self.get_parameter("speed").value

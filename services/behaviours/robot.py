@@ -11,7 +11,9 @@
 
 ``control()`` runs RATE_HZ times a second (on sim time with ``--use-sim-time``) and returns the
 command to send, or None to send nothing this time. ``run_behaviour`` is every behaviour's
-``main``: ``skydeck run NAME [--namespace /robot1] [--ros-args -p NAME:=VALUE ...]``.
+``main``: ``skydeck run NAME [--namespace /robot1] [--ros-args -p NAME:=VALUE ...]``;
+``--namespace /robot1`` is ``--ros-args -r __ns:=/robot1``: the node is ``/robot1/NAME`` and
+drives ``/robot1/cmd_vel``.
 """
 
 from __future__ import annotations
@@ -23,7 +25,6 @@ from dataclasses import dataclass, field
 
 from services.runtime import Node, NodeSettings, spin
 from services.runtime.ros_args import parse_ros_args, set_process_ros_arguments, split_ros_args
-from shared_models import resolve_name
 from shared_models.errors import SkydeckError
 from shared_models.geometry_msgs import Twist, Vector3
 from shared_models.nav_msgs import Odometry
@@ -89,20 +90,17 @@ class RobotBehaviour(Node):
     RATE_HZ = 20.0
 
     def __init__(self, node_name: str, namespace: str = "/", settings: NodeSettings | None = None) -> None:
-        super().__init__(node_name, settings=settings)
-        self.namespace = "/" if namespace in ("", "/") else resolve_name(namespace)  # checked
+        # The node itself goes in the namespace, as rclpy's Node(name, namespace=...) and
+        # `--ros-args -r __ns:=/robot1` put it (a later __ns wins): /robot1/wall_follower, its
+        # relative names (cmd_vel, scan, ...) resolved there.
+        super().__init__(node_name, namespace=namespace, settings=settings)
         self.sensors = Sensors()
-        self.cmd_vel = self.create_publisher(Twist, self.topic("cmd_vel"), 10)
-        self.create_subscription(LaserScan, self.topic("scan"), self.sensors.on_scan, 1)
-        self.create_subscription(Odometry, self.topic("odom"), self.sensors.on_odom, 1)
-        self.create_subscription(Bump, self.topic("bump"), self.sensors.on_bump, 10)
+        self.cmd_vel = self.create_publisher(Twist, "cmd_vel", 10)
+        self.create_subscription(LaserScan, "scan", self.sensors.on_scan, 1)
+        self.create_subscription(Odometry, "odom", self.sensors.on_odom, 1)
+        self.create_subscription(Bump, "bump", self.sensors.on_bump, 10)
         self.create_timer(1.0 / self.RATE_HZ, self._tick)
         self.command = (0.0, 0.0)
-
-    def topic(self, name: str) -> str:
-        """``name`` in this robot's namespace: ``cmd_vel`` -> ``/robot1/cmd_vel``; without
-        ``--namespace``, ``name`` as is, in the node's namespace (``--ros-args -r __ns:=/robot1``)."""
-        return name if self.namespace == "/" else resolve_name(name, self.namespace)
 
     def control(self) -> tuple[float, float] | None:
         """The command to send now: (forward m/s, counter-clockwise rad/s), or None for none."""
@@ -125,7 +123,9 @@ def run_behaviour(
     """A behaviour's ``main``: ``--namespace NS`` picks the robot, ``--ros-args -p`` its parameters."""
     parser = argparse.ArgumentParser(prog=f"skydeck run {prog}", description=description)
     parser.add_argument(
-        "--namespace", default="/", help="the robot's namespace, e.g. /robot1 with --robots 2 (default: /)"
+        "--namespace",
+        default="/",
+        help="the robot's namespace, e.g. /robot1 with --robots 2 (default: /); as --ros-args -r __ns:=/robot1",
     )
     node_argv, ros_argv = split_ros_args(list(argv or []))
     args = parser.parse_args(node_argv)

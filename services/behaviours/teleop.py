@@ -77,7 +77,7 @@ class KeyboardTeleop(RobotBehaviour):
         try:
             await super().start()
             asyncio.get_running_loop().add_reader(self._fd, self._on_key)
-            sys.stdout.write(HELP.format(topic=self.topic("cmd_vel")) + self._status() + "\n")
+            sys.stdout.write(HELP.format(topic=self.cmd_vel.topic_name) + self._status() + "\n")
             sys.stdout.flush()
         except BaseException:
             self._restore_terminal()

@@ -105,14 +105,13 @@ def use_current_workspace() -> None:
 
 
 def _learn_from_core(type_name: str) -> bool:
-    import httpx
-
-    from services.cli.core_client import auth_headers, core_url
+    from services.cli.core_client import core_url, get
     from services.runtime.core_types import interface_path, is_known, learn_definitions_reply
+    from services.runtime.http_client import HttpError
 
     try:
-        reply = httpx.get(core_url() + interface_path(type_name), headers=auth_headers(), timeout=5.0)
-        body = reply.json() if reply.status_code == 200 else None
-    except (httpx.HTTPError, ValueError):
+        reply = get(core_url() + interface_path(type_name), timeout_s=5.0)
+        body = reply.json() if reply.status == 200 else None
+    except (HttpError, ValueError):
         return False  # no core: the type is unknown, as the caller says
-    return learn_definitions_reply(reply.status_code, body) and is_known(type_name)
+    return learn_definitions_reply(reply.status, body) and is_known(type_name)

@@ -14,7 +14,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from services.cli.arguments import known_type, positive_float, ros_name
-from services.cli.core_client import core_url, get_json
+from services.cli.core_client import core_url, get_json, node_settings
 from services.cli.errors import CliError
 
 if TYPE_CHECKING:
@@ -92,7 +92,7 @@ def _record(args: argparse.Namespace) -> int:
     metadata = _metadata()  # also checks that the core answers, before a file is made
     writer = BagWriter.create(path, metadata=metadata, encoding=args.encoding)
     print(f"recording to {path} (Ctrl-C stops)", flush=True)
-    recorder = Recorder(writer, selection, limits=limits, settings=_node_settings(), say=_say)
+    recorder = Recorder(writer, selection, limits=limits, settings=node_settings(), say=_say)
     try:
         _run(recorder)
     finally:
@@ -182,7 +182,7 @@ def _play(args: argparse.Namespace) -> int:
         for topic in reader.summary.topics:  # a workspace's own types: the folder's, or the core's
             with contextlib.suppress(CliError):
                 known_type(topic.type_name)
-        player = Player(reader, options, settings=_node_settings(), say=_say)
+        player = Player(reader, options, settings=node_settings(), say=_say)
         check_types(get_json("/api/graph")["topics"], player.played_types)
         summary = reader.summary
         print(
@@ -210,17 +210,11 @@ def _say(line: str) -> None:
     print(line, flush=True)
 
 
-def _node_settings() -> Any:
-    from services.runtime.settings import node_settings
-
-    return node_settings().model_copy(update={"port": 0})
-
-
 def _run(node: Node, keys: Callable[[], contextlib.AbstractContextManager[bool]] | None = None) -> bool:
     """Run ``node`` until it stops by itself or Ctrl-C / SIGTERM asks; True if a signal did."""
-    import logging
+    from services.runtime.executor import configure_logging
 
-    logging.basicConfig(level=logging.WARNING, format="[%(levelname)s] [%(name)s] %(message)s")
+    configure_logging("WARNING")
     interrupted = False
 
     async def main() -> None:

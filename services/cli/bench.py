@@ -1,8 +1,13 @@
-"""``skydeck bench``: the benchmark suite, Skydeck against its references in one run."""
+"""``skydeck bench``: the benchmark suite, Skydeck against its references in one run.
+
+The suite is the checkout's ``benchmarks`` package, beside ``services/``, not part of the product:
+an installation without it (the Docker image) says so in one line.
+"""
 
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import sys
 from pathlib import Path
 
@@ -44,9 +49,14 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
 
 
 def _bench(args: argparse.Namespace) -> int:
+    if importlib.util.find_spec("benchmarks") is None:
+        raise CliError(
+            "skydeck bench runs the benchmark suite of a Skydeck checkout (benchmarks/ beside services/), "
+            "which this installation does not have: run it from a checkout (`make bench`)"
+        )
     if args.soak is not None:
         return _soak(args)
-    from services.bench import run_bench
+    from benchmarks import run_bench
 
     plots = args.plots
     if plots is None and not args.quick and not args.no_plots and _DEFAULT_PLOTS.is_dir():
@@ -67,9 +77,9 @@ def _bench(args: argparse.Namespace) -> int:
 
 
 def _soak(args: argparse.Namespace) -> int:
-    from services.bench.plots import write_plots
-    from services.bench.report import format_table, machine_info, write_json
-    from services.bench.soak import run_soak
+    from benchmarks.plots import write_plots
+    from benchmarks.report import format_table, machine_info, write_json
+    from benchmarks.soak import run_soak
 
     results, data = run_soak(args.soak)
     print(format_table(results))

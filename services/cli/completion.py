@@ -6,7 +6,7 @@
 The script asks ``skydeck completion complete`` for the candidates of the word being typed,
 giving it the words so far in ``SKYDECK_COMP_WORDS`` (one a line) and the word's index in
 ``SKYDECK_COMP_CWORD``. Candidates come from the command line's own parser (verbs and flags)
-and, for names, from the running system (``/api/graph``: topics, services, nodes) or the type
+and, for names, from the running system (``/api/graph``: topics, services, actions, nodes) or the type
 catalogue; an argument that is a file answers ``__files__``, and the shell lists files; after a
 launch file, its launch arguments as ``name:=`` (no space after them: the value follows).
 """
@@ -28,6 +28,7 @@ _KINDS = {
     "topic": "topics",
     "topics": "topics",
     "service": "services",
+    "action": "actions",
     "node": "nodes",
     "type": "types",
     "file": "files",
@@ -92,9 +93,7 @@ def _completion(args: argparse.Namespace) -> int:
         except ValueError:
             index = len(words) - 1
         words += [""] * (index + 1 - len(words))  # the shell's $(...) drops a last, empty word
-        from services.cli.main import build_parser
-
-        print("\n".join(candidates(build_parser(), words[1 : index + 1])))
+        print("\n".join(candidates(args.parser, words[1 : index + 1])))
         return 0
     print(_BASH if args.shell == "bash" else _ZSH, end="")
     return 0
@@ -180,7 +179,7 @@ def _positional_values(parser: argparse.ArgumentParser, path: list[str], given: 
     if kind == "types":
         from shared_models import interface_names
 
-        wanted = "srv" if path[:1] == ["service"] else "msg" if path[:1] == ["topic"] else None
+        wanted = {"service": "srv", "topic": "msg", "action": "action"}.get(path[0] if path else "")
         package = typed.split("/", 1)[0] if "/" in typed else None  # only its package is loaded
         return [name for name in interface_names(wanted, package=package) if name.startswith(typed)]
     if kind is not None:
@@ -202,12 +201,15 @@ def _launch_arguments(file: str, given: list[str], typed: str) -> list[str]:
 
 def _live(kind: str, typed: str) -> list[str]:
     """Names of the running system (quietly none if the core does not answer at once)."""
-    import httpx
-
-    from services.cli.core_client import auth_headers, core_url
+    from services.cli.core_client import core_url, get
+    from services.runtime.http_client import HttpError
 
     try:
-        graph = httpx.get(core_url() + "/api/graph", headers=auth_headers(), timeout=_GRAPH_TIMEOUT_S).json()
-    except (httpx.HTTPError, ValueError):
+        graph = get(core_url() + "/api/graph", timeout_s=_GRAPH_TIMEOUT_S).json()
+    except (HttpError, ValueError):
         return []
+    if kind == "actions":
+        from services.runtime.actions.names import actions_in_graph
+
+        return [name for name in actions_in_graph(graph) if name.startswith(typed)]
     return sorted(item["name"] for item in graph.get(kind, []) if item["name"].startswith(typed))

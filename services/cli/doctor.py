@@ -24,8 +24,9 @@ from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 from typing import Any
 
-from services.cli.core_client import auth_headers, core_url
+from services.cli.core_client import core_url, get
 from services.cli.settings import cli_settings
+from services.runtime.http_client import HttpError
 
 __all__ = ["add_parser"]
 
@@ -131,19 +132,17 @@ def _web_ui() -> list[Check]:
 
 
 def _core_and_clock(found: _Found) -> list[Check]:
-    import httpx
-
     url = core_url()
     try:
-        reply = httpx.get(url + "/health", headers=auth_headers(), timeout=3.0)
-    except httpx.HTTPError as error:
-        missing = f"core at {url} not reachable ({type(error).__name__})"
+        reply = get(url + "/health", timeout_s=3.0)
+    except HttpError as error:
+        missing = f"core at {url} not reachable ({error})"
         fix = "start it with `skydeck core` or `make up`, or set SKYDECK_CORE_URL to where it runs"
         if "core_url" not in cli_settings().model_fields_set:  # nothing says one should run yet
             return [Check("warn", f"no core running: {missing}", fix)]
         return [Check("FAIL", missing, fix)]
-    if reply.status_code != 200:
-        return [Check("FAIL", f"core at {url} answered {reply.status_code} to /health", "is another server on that port?")]
+    if reply.status != 200:
+        return [Check("FAIL", f"core at {url} answered {reply.status} to /health", "is another server on that port?")]
     health = reply.json() if reply.headers.get("content-type", "").startswith("application/json") else {}
     found.ports.update(_held_by(url, health))
     found_nodes = [Check("ok", f"core at {url} answers ({health.get('nodes', '?')} node(s) registered)")]
@@ -162,8 +161,6 @@ def _core_and_clock(found: _Found) -> list[Check]:
 def _held_by(url: str, health: dict[str, Any]) -> dict[int, str]:
     """The ports of this machine the Skydeck at ``url`` holds: its core's, its endpoints', and
     those of its nodes (from its graph)."""
-    import httpx
-
     parts = urllib.parse.urlsplit(url)
     if parts.hostname not in ("127.0.0.1", "localhost", "::1"):
         return {}
@@ -172,8 +169,8 @@ def _held_by(url: str, health: dict[str, Any]) -> dict[int, str]:
     if isinstance(endpoints, dict):
         held.update({port: name for name, port in endpoints.items() if isinstance(port, int)})
     try:
-        graph = httpx.get(url + "/api/graph", headers=auth_headers(), timeout=3.0).json()
-    except (httpx.HTTPError, ValueError):
+        graph = get(url + "/api/graph", timeout_s=3.0).json()
+    except (HttpError, ValueError):
         return held
     for node in graph.get("nodes", []) if isinstance(graph, dict) else []:
         node_url = urllib.parse.urlsplit(str(node.get("url", "")))
@@ -260,13 +257,11 @@ def _test_tools() -> list[Check]:
 
 def _ros2() -> list[Check]:
     """The ROS 2 bridge's extra, and the domain a running bridge joined (its module says)."""
-    import httpx
-
     from services.protocols.ros2.extra import doctor_findings
 
     try:
-        graph = httpx.get(core_url() + "/api/graph", headers=auth_headers(), timeout=3.0).json()
-    except (httpx.HTTPError, ValueError):
+        graph = get(core_url() + "/api/graph", timeout_s=3.0).json()
+    except (HttpError, ValueError):
         graph = None
     return [Check(*finding) for finding in doctor_findings(graph)]
 

@@ -10,7 +10,7 @@ import yaml
 
 from services.cli.errors import CliError
 
-__all__ = ["message_view", "parse_data", "system_name", "to_csv", "to_yaml"]
+__all__ = ["message_from", "message_view", "parse_data", "system_name", "to_csv", "to_yaml"]
 
 # The systems a bridge's foreign participants belong to (the graph's ``system``), as people say them.
 _SYSTEMS = {"ros2": "ROS 2"}
@@ -42,6 +42,18 @@ def parse_data(text: str | None) -> dict[str, Any]:
     if not isinstance(value, dict):
         raise CliError(f"DATA must be a mapping of fields such as \"{{x: 1.0, y: 2.0}}\", got {text!r}")
     return value
+
+
+def message_from(text: str | None, msg_type: Any) -> Any:
+    """DATA (YAML or JSON) as a ``msg_type`` message; CliError naming the first bad field."""
+    from pydantic import ValidationError
+
+    from services.runtime.edge.frames import describe_validation_error
+
+    try:
+        return msg_type.model_validate(parse_data(text))
+    except ValidationError as error:
+        raise CliError(describe_validation_error(msg_type.__ros_type__, error)) from None
 
 
 _STEP = re.compile(r"([^.\[\]]+)|\[(\d+)\]")

@@ -5,10 +5,12 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+from typing import cast
 
 from pydantic import ValidationError
 
 from services.cli import (
+    action,
     bag,
     bridge,
     completion,
@@ -21,6 +23,7 @@ from services.cli import (
     topic,
 )
 from services.cli.settings import CliSettings, use_cli_settings
+from services.cli.suggestions import SuggestingParser
 from shared_models.errors import SkydeckError
 
 __all__ = ["build_parser", "main"]
@@ -28,27 +31,31 @@ __all__ = ["build_parser", "main"]
 
 def build_parser() -> argparse.ArgumentParser:
     """The whole command line, one subparser per verb group."""
-    parser = argparse.ArgumentParser(
+    parser = SuggestingParser(
         prog="skydeck",
         description="ROS-style robot software over HTTP and WebSocket. The core is found at SKYDECK_CORE_URL.",
     )
-    subparsers = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    # The verbs that need the whole command line (completion's) find it here.
+    parser.set_defaults(parser=parser)
+    # Every level is a SuggestingParser (argparse makes subparsers of the parser's class); the
+    # verb modules take the base type, which the action's type parameter cannot say (invariant).
+    subparsers = cast(
+        "argparse._SubParsersAction[argparse.ArgumentParser]",
+        parser.add_subparsers(dest="command", required=True, metavar="COMMAND"),
+    )
     run.add_parsers(subparsers)
-    for module in (topic, service, node, param, interface, bag, bridge, doctor, completion):
+    for module in (topic, service, action, node, param, interface, bag, bridge, doctor, completion):
         module.add_parser(subparsers)
     _add_optional(subparsers)
     return parser
 
 
 def _add_optional(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    # Verbs whose modules pull in heavier dependencies register themselves here.
-    from services.cli import launch
+    # Verbs whose modules pull in heavier dependencies (launch), or run what an installation may
+    # not have (bench: the checkout's benchmarks), register themselves here.
+    from services.cli import bench, launch
 
     launch.add_parser(subparsers)
-    try:
-        from services.cli import bench
-    except ImportError:
-        return
     bench.add_parser(subparsers)
 
 

@@ -8,9 +8,11 @@ import signal
 import time
 
 from services.cli.arguments import node_name, positive_float, positive_int
-from services.cli.core_client import auth_headers, error_detail, get_json, post_json
+from services.cli.core_client import error_detail, get, get_json, post_json
 from services.cli.errors import CliError
 from services.cli.formatting import system_name
+from services.cli.graph import lookup, print_sections
+from services.runtime.http_client import HttpError, HttpReply
 
 __all__ = ["add_parser"]
 
@@ -40,10 +42,9 @@ def _list(args: argparse.Namespace) -> int:
     return 0
 
 
-
 def _info(args: argparse.Namespace) -> int:
     name = node_name(args.node)
-    node = get_json(f"/api/nodes{name}", missing=f"unknown node {name}: see `skydeck node list`")
+    node = lookup("node", name)
     graph = get_json("/api/graph")
     types = {t["name"]: t["type"] for t in graph["topics"]}
     types.update({s["name"]: s["type"] for s in graph["services"]})
@@ -53,40 +54,31 @@ def _info(args: argparse.Namespace) -> int:
         print(f"Client: {node['client']}")
     if node.get("system"):  # another system's node, seen through a bridge
         print(f"System: {system_name(node['system'])}, via {node['via']}")
-    for title, key in (("Publications", "publications"), ("Subscriptions", "subscriptions"), ("Services", "services")):
-        print(f"\n{title}:")
-        if not node[key]:
-            print(" None")
-        for entity in node[key]:
-            print(f" * {entity} [{types.get(entity, '?')}]")
+    sections = (("Publications", "publications"), ("Subscriptions", "subscriptions"), ("Services", "services"))
+    print_sections(node, sections, lambda entity: f"[{types.get(entity, '?')}]")
     return 0
 
 
-def _lookup(name: str) -> dict:  # type: ignore[type-arg]
-    return get_json(f"/api/nodes{name}", missing=f"unknown node {name}: see `skydeck node list`")  # type: ignore[no-any-return]
-
-
 def _ping(args: argparse.Namespace) -> int:
-    import httpx
-
     name = node_name(args.node)
-    url = _lookup(name)["url"].rstrip("/")
+    url = lookup("node", name)["url"].rstrip("/")
     print(f"pinging {name} with a timeout of {args.timeout:g}s", flush=True)
     failed = 0
     for attempt in range(args.count):
         started = time.perf_counter()
+        reply: HttpReply | None = None
         try:
-            reply = httpx.get(url + "/health", headers=auth_headers(), timeout=args.timeout)
-            ok = reply.status_code == 200
-        except httpx.HTTPError as error:
-            ok, reply = False, None
-            print(f"ERROR: connection to {url} failed: {type(error).__name__}", flush=True)
+            reply = get(url + "/health", timeout_s=args.timeout)
+            ok = reply.status == 200
+        except HttpError as error:
+            ok = False
+            print(f"ERROR: connection to {url} failed: {error}", flush=True)
         if ok:
             print(f"reply from {url} time={(time.perf_counter() - started) * 1e3:.3f}ms", flush=True)
         else:
             failed += 1
             if reply is not None:
-                print(f"ERROR: {url}/health answered {reply.status_code}", flush=True)
+                print(f"ERROR: {url}/health answered {reply.status}", flush=True)
         if attempt + 1 < args.count:
             time.sleep(1.0)
     if failed:
@@ -99,14 +91,14 @@ def _kill(args: argparse.Namespace) -> int:
     from shared_models.skydeck_launch import KillNodeResponse
 
     name = node_name(args.node)
-    node = _lookup(name)
+    node = lookup("node", name)
     if name in ("/skydeck_core", LAUNCH_NODE):
         raise CliError(f"{name} is part of Skydeck itself: stop the core or the launch with Ctrl-C")
     services = {service["name"] for service in get_json("/api/graph")["services"]}
     if KILL_SERVICE in services:
         reply = post_json(KILL_SERVICE, {"node": name}, timeout_s=15.0)
-        if reply.status_code != 200:
-            raise CliError(f"the launch could not be asked: {error_detail(reply)} (HTTP {reply.status_code})")
+        if reply.status != 200:
+            raise CliError(f"the launch could not be asked: {error_detail(reply)} (HTTP {reply.status})")
         answer = KillNodeResponse.model_validate(reply.json())
         if answer.success:
             print(answer.message)

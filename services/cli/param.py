@@ -57,10 +57,10 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
 def _call(node: str, verb: str, body: dict[str, Any]) -> dict[str, Any]:
     """Call ``NODE/VERB`` through the core; a node without parameter services is one clear line."""
     reply = post_json(f"{node}/{verb}", body, timeout_s=_TIMEOUT_S)
-    if reply.status_code == 404:
+    if reply.status == 404:
         raise CliError(f"no node {node} with parameters: see `skydeck node list` (or `skydeck param list`)")
-    if reply.status_code != 200:
-        raise CliError(f"{node}/{verb}: {error_detail(reply)} (HTTP {reply.status_code})")
+    if reply.status != 200:
+        raise CliError(f"{node}/{verb}: {error_detail(reply)} (HTTP {reply.status})")
     return reply.json()  # type: ignore[no-any-return]
 
 

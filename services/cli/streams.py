@@ -10,9 +10,10 @@ from websockets.exceptions import InvalidHandshake, InvalidStatus
 
 from services.cli.core_client import auth_headers, core_url, get_json, ws_url
 from services.cli.errors import CliError
+from services.cli.suggestions import did_you_mean, unknown
 from shared_models.close_codes import Close
 
-__all__ = ["frames", "warn_if_unpublished"]
+__all__ = ["check_topic", "frames"]
 
 
 @overload
@@ -51,8 +52,16 @@ async def frames(
         ) from None
 
 
-def warn_if_unpublished(name: str) -> None:
-    """rostopic's warning when nobody publishes ``name`` yet (the stream starts when one does)."""
+def check_topic(name: str, *, wait: bool = True) -> None:
+    """Before reading ``name``: rostopic's warning when nobody publishes it yet (the stream
+    starts when one does), with the nearest names when the system has no such topic at all.
+    With ``wait=False`` (a bounded read: ``echo --once``), a name the system lacks is an error."""
     topics = {t["name"]: t for t in get_json("/api/graph")["topics"]}
-    if name not in topics or not topics[name]["publishers"]:
+    if name in topics and topics[name]["publishers"]:
+        return
+    if name in topics:  # subscribed to, or published before: a name of this system
         print(f"WARNING: topic [{name}] does not appear to be published yet", flush=True)
+        return
+    if not wait:
+        raise CliError(unknown("topic", name, topics, listing="skydeck topic list") + ", or wait for it with --timeout S")
+    print(f"WARNING: topic [{name}] does not appear to be published yet{did_you_mean(name, topics)}", flush=True)

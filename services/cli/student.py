@@ -17,12 +17,11 @@ fences when it registers, in one line, all the same.
 
 from __future__ import annotations
 
-import json
 import logging
-import urllib.request
 
 from services.access.policy import Role
 from services.cli.errors import CliError
+from services.runtime.http_client import HttpError, request_once
 from services.runtime.ros_args import RemapRule, RosArguments
 from shared_models.names import InvalidNameError, resolve_name
 
@@ -36,13 +35,12 @@ def ask_namespace(core_url: str, token: str) -> str | None:
     is not a student's, there is none, or the core cannot say."""
     if not token:
         return None
-    # urllib, not httpx: the CLI has it loaded already, and every `skydeck run` with a token
-    # (each node of a launch that has one) asks, before its program starts.
-    request = urllib.request.Request(core_url.rstrip("/") + "/api/access", headers={"Authorization": f"Bearer {token}"})
     try:
-        with urllib.request.urlopen(request, timeout=3.0) as reply:
-            described = json.loads(reply.read())
-    except (OSError, ValueError) as error:  # URLError and HTTPError are OSErrors
+        reply = request_once(
+            "GET", core_url.rstrip("/") + "/api/access", timeout_s=3.0, headers={"Authorization": f"Bearer {token}"}
+        )
+        described = reply.json() if reply.status == 200 else {}
+    except (HttpError, ValueError) as error:  # ValueError: a reply that is not JSON
         logger.debug("could not ask the core at %s who the token is: %s", core_url, error)
         return None
     if not isinstance(described, dict) or described.get("role") != Role.STUDENT.value:

@@ -13,8 +13,9 @@ from websockets.exceptions import ConnectionClosed, InvalidHandshake
 from services.cli.arguments import known_type, positive_float, positive_int, ros_name
 from services.cli.core_client import auth_headers, core_url, get_json, ws_url
 from services.cli.errors import CliError
-from services.cli.formatting import message_view, parse_data, system_name, to_csv, to_yaml
-from services.cli.streams import frames, warn_if_unpublished
+from services.cli.formatting import message_from, message_view, system_name, to_csv, to_yaml
+from services.cli.graph import add_graph_verbs, lookup, print_sections
+from services.cli.streams import check_topic, frames
 from services.cli.topic_stats import add_stats_parsers
 from shared_models.close_codes import Close
 
@@ -25,22 +26,16 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     topic = subparsers.add_parser("topic", help="list, inspect, echo and publish topics")
     verbs = topic.add_subparsers(dest="verb", required=True, metavar="VERB")
 
-    p = verbs.add_parser("list", help="list the topics of the running system")
-    p.add_argument("-t", "--show-types", action="store_true", help="show each topic's type")
-    p.add_argument("-v", "--verbose", action="store_true", help="show publisher and subscriber counts")
-    p.set_defaults(func=_list)
-
-    p = verbs.add_parser("info", help="type, publishers, subscribers and rate of a topic")
-    p.add_argument("topic")
-    p.set_defaults(func=_info)
-
-    p = verbs.add_parser("type", help="the type of a topic")
-    p.add_argument("topic")
-    p.set_defaults(func=_type)
-
-    p = verbs.add_parser("find", help="the topics of a type")
-    p.add_argument("type", help="e.g. geometry_msgs/msg/PoseStamped")
-    p.set_defaults(func=_find)
+    listed = add_graph_verbs(
+        verbs,
+        "topic",
+        listing=_list,
+        list_help="list the topics of the running system",
+        info=_info,
+        info_help="type, publishers, subscribers and rate of a topic",
+        example_type="geometry_msgs/msg/PoseStamped",
+    )
+    listed.add_argument("-v", "--verbose", action="store_true", help="show publisher and subscriber counts")
 
     p = verbs.add_parser("echo", help="print the messages of a topic")
     p.add_argument("topic")
@@ -85,47 +80,24 @@ def _list(args: argparse.Namespace) -> int:
     return 0
 
 
-
 def _info(args: argparse.Namespace) -> int:
     name = ros_name(args.topic)
-    topic = get_json(f"/api/topics{name}", missing=f"unknown topic {name}: see `skydeck topic list`")
+    topic = lookup("topic", name)
     graph = get_json("/api/graph")
     urls = {node["name"]: node["url"] for node in graph["nodes"]}
     print(f"Type: {topic['type']}")
     if topic.get("rate_hz") is not None:
         print(f"Rate: {topic['rate_hz']:.2f} Hz")
-    for title, key in (("Publishers", "publishers"), ("Subscribers", "subscribers")):
-        print(f"\n{title}:")
-        if not topic[key]:
-            print(" None")
-        for node in topic[key]:
-            print(f" * {node} ({urls.get(node, '?')})")
-    return 0
-
-
-def _type(args: argparse.Namespace) -> int:
-    name = ros_name(args.topic)
-    topic = get_json(f"/api/topics{name}", missing=f"unknown topic {name}: see `skydeck topic list`")
-    print(topic["type"])
-    return 0
-
-
-def _find(args: argparse.Namespace) -> int:
-    from shared_models import Message
-
-    type_name = known_type(args.type).__ros_type__  # an unknown name is an error, not "none found"
-    if not issubclass(known_type(args.type), Message):
-        raise CliError(f"{type_name} is a service type: use `skydeck service find`")
-    for topic in get_json("/api/graph")["topics"]:
-        if topic["type"] == type_name:
-            print(topic["name"])
+    print_sections(topic, (("Publishers", "publishers"), ("Subscribers", "subscribers")), lambda node: f"({urls.get(node, '?')})")
     return 0
 
 
 def _echo(args: argparse.Namespace) -> int:
     name = ros_name(args.topic)
-    warn_if_unpublished(name)
     limit = 1 if args.once else args.count
+    # A bounded echo (a script's "give me a message") fails on a name the system lacks; a stream,
+    # or one given --timeout, waits for a publisher to come, as rostopic and ros2 topic wait.
+    check_topic(name, wait=limit is None or args.timeout is not None)
     show = message_view(field=args.field, no_arr=args.no_arr)
 
     async def run() -> None:
@@ -155,19 +127,13 @@ def _echo(args: argparse.Namespace) -> int:
 
 def _pub(args: argparse.Namespace) -> int:
     # The message types and the validation, here and not at the top: see cli/interface.py.
-    from pydantic import ValidationError
-
-    from services.runtime.edge.frames import describe_validation_error
     from shared_models import Message
 
     name = ros_name(args.topic)
     msg_type = known_type(args.type)
     if not issubclass(msg_type, Message):
         raise CliError(f"{args.type} is a service type: use `skydeck service call`")
-    try:
-        msg = msg_type.model_validate(parse_data(args.data))
-    except ValidationError as error:
-        raise CliError(describe_validation_error(msg_type.__ros_type__, error)) from None
+    msg = message_from(args.data, msg_type)
     topics = {t["name"]: t for t in get_json("/api/graph")["topics"]}
     if name in topics and topics[name]["type"] != msg_type.__ros_type__:
         raise CliError(f"{name} is {topics[name]['type']}, not {msg_type.__ros_type__}")

@@ -17,7 +17,7 @@ import ormsgpack
 
 from services.cli.arguments import positive_int, ros_name
 from services.cli.errors import CliError
-from services.cli.streams import frames, warn_if_unpublished
+from services.cli.streams import check_topic, frames
 
 __all__ = ["add_stats_parsers"]
 
@@ -51,7 +51,7 @@ def _run(
     """Read the topic, calling ``on_frame(frame, arrival)``; ``report()`` every second, -n times.
     ``alongside()`` runs as long as the reading does (another stream to follow)."""
     name = ros_name(args.topic)
-    warn_if_unpublished(name)
+    check_topic(name)
 
     async def run() -> None:
         async def read() -> None:

@@ -27,7 +27,7 @@ from services.core.access import CoreAccess
 from services.core.api import router as api_router
 from services.core.core_node import CORE_NODE, CORE_NODE_PATH, CoreNode
 from services.core.endpoint_servers import EndpointServers, ServedEndpoint
-from services.core.gateway import Gateway, ServiceCallsFirst
+from services.core.gateway import Gateway
 from services.core.guests import Guests
 from services.core.openapi import aggregate_openapi
 from services.core.parameter_server import ParameterTree
@@ -35,6 +35,8 @@ from services.core.parameter_server import router as parameter_server_router
 from services.core.recordings import Recordings
 from services.core.recordings import router as recordings_router
 from services.core.registry import Registry
+from services.core.rosout_log import RosoutLog
+from services.core.rosout_log import router as rosout_router
 from services.core.service_calls import ServiceCalls
 from services.core.sessions import serve_session
 from services.core.settings import CoreSettings
@@ -58,28 +60,20 @@ _THREE_DIR = _WEB_UI / "vendor" / "node_modules" / "three"  # the 3D view's libr
 
 
 class CoreApp(FastAPI):
-    """The core's FastAPI app. Every request that reaches it (plain service calls are forwarded
-    before, by :mod:`services.core.gateway_protocol`) meets the edge checks first
-    (:func:`edge_checks`: origin, body size); then a service call through the gateway is taken
-    before FastAPI's own layers (:class:`~services.core.gateway.ServiceCallsFirst`), and the rest
-    goes through FastAPI."""
+    """The core's FastAPI app. Plain service calls are forwarded before it, by the core's HTTP
+    protocol (:mod:`services.core.gateway_protocol`), through :attr:`service_calls`; every request
+    that reaches the app meets the edge checks first (:func:`edge_checks`: origin, body size)."""
 
-    service_calls_first: ServiceCallsFirst | None = None
+    service_calls: ServiceCalls | None = None
+    """The core's one service-call path, while the core runs (its HTTP protocol forwards through it)."""
 
     def __init__(self, *, max_message_bytes: int, **kwargs: Any) -> None:
         super().__init__(**kwargs)
         self.max_message_bytes = max_message_bytes
-        self._checked = edge_checks(self._dispatch, max_message_bytes)
+        self._checked = edge_checks(super().__call__, max_message_bytes)
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         await self._checked(scope, receive, send)
-
-    async def _dispatch(self, scope: Scope, receive: Receive, send: Send) -> None:
-        first = self.service_calls_first
-        if first is not None and first.takes(scope):
-            await first(scope, receive, send)
-            return
-        await super().__call__(scope, receive, send)
 
 
 def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[ServedEndpoint] = ()) -> FastAPI:
@@ -97,22 +91,27 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
     servers = EndpointServers(settings, endpoints)
 
     @contextlib.asynccontextmanager
-    async def lifespan(app: FastAPI) -> AsyncIterator[None]:
+    async def lifespan(app: CoreApp) -> AsyncIterator[None]:
         http = HttpClient()
         core_node.start()
+        app.state.rosout = RosoutLog(core_node)
+        app.state.rosout.start()
         guests = Guests(registry, core_node.participant.url)
-        calls = ServiceCalls(registry, guests, settings, http)
+        calls = ServiceCalls(registry, guests, settings, http, fences)
         gateway = Gateway(registry, core_node, settings, http, calls, fences)
         app.state.http = http
         app.state.gateway = gateway
         app.state.calls = calls
+        app.service_calls = calls
         app.state.recordings = Recordings(settings.recordings_folder, core_node, registry)
         await servers.start(CoreAccess(core_node, registry, guests, calls, gateway, settings, fences))
         try:
             yield
         finally:
+            app.service_calls = None
             await servers.stop()
             app.state.recordings.close()
+            app.state.rosout.stop()
             core_node.stop()
             await http.aclose()
 
@@ -135,12 +134,12 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
     app.state.core_node = core_node
     app.state.endpoints = servers
     app.state.rosparam = ParameterTree()  # ROS 1's parameter server: the core's, as roscore's
-    app.service_calls_first = ServiceCallsFirst(registry, lambda: getattr(app.state, "gateway", None))
     install_error_handlers(app)
     app.include_router(api_router)
     app.include_router(access_router)
     app.include_router(recordings_router)
     app.include_router(parameter_server_router)
+    app.include_router(rosout_router)
 
     @app.get("/health", tags=["core"])
     async def health() -> dict[str, Any]:

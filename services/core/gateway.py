@@ -13,25 +13,22 @@ Each request or socket is admitted by the core's fences (:mod:`services.access`)
 
 from __future__ import annotations
 
-from collections.abc import Callable
-
 from fastapi.responses import JSONResponse, Response
 from starlette.requests import Request
-from starlette.types import Receive, Scope, Send
 from starlette.websockets import WebSocket
 
 from services.access import Fences, Verb
 from services.core.core_node import CORE_NODE, CoreNode
 from services.core.gateway_topic import GatewayTopic, declared_type
 from services.core.registry import Registry
-from services.core.service_calls import ServiceCallFailed, ServiceCalls, ServiceReply
+from services.core.service_calls import ServiceCallFailed, ServiceCalls
 from services.core.settings import CoreSettings
 from services.runtime.auth import presented_token
 from services.runtime.edge.topic_socket import serve_topic_socket
 from services.runtime.http_client import HttpClient, HttpError
 from shared_models import InvalidNameError, resolve_name
 
-__all__ = ["Gateway", "ServiceCallsFirst"]
+__all__ = ["Gateway"]
 
 
 def _error(status_code: int, detail: str) -> JSONResponse:
@@ -54,8 +51,8 @@ class Gateway:
         self._core = core
         self._settings = settings
         self._http = http
-        self.calls = calls
-        self.fences = fences
+        self._calls = calls
+        self._fences = fences
 
     # -- HTTP ---------------------------------------------------------------------------------
 
@@ -67,30 +64,22 @@ class Gateway:
             return _error(404, str(error))
         if request.method == "POST":
             return await self._call_service(name, request)
-        refusal = self.fences.admit(presented_token(request)).refusal(Verb.READ, name)
+        refusal = self._fences.admit(presented_token(request)).refusal(Verb.READ, name)
         if refusal is not None:
             return _error(refusal.http_status, str(refusal))
         return await self._latest(name)
 
     async def _call_service(self, name: str, request: Request) -> Response:
-        reply = await self.forward(
-            name, await request.body(), token=presented_token(request), content_type=request.headers.get("content-type")
-        )
-        return Response(reply.body, status_code=reply.status, media_type=reply.content_type)
-
-    async def forward(self, name: str, body: bytes, *, token: str, content_type: str | None) -> ServiceReply:
-        """An HTTP client's call of service ``name``: the service's reply, or why none came (a
-        JSON ``detail`` with the status of :mod:`services.core.service_calls`)."""
+        """An HTTP client's call that the core's own protocol did not take (a browser's, one with
+        ``?token=``, any under another server): the same call, its failure as a JSON ``detail``."""
+        caller = self._fences.admit(presented_token(request))
         try:
-            return await self.calls.call(name, body, caller=self.fences.admit(token), content_type=content_type)
+            reply = await self._calls.call(
+                name, await request.body(), caller=caller, content_type=request.headers.get("content-type")
+            )
         except ServiceCallFailed as failed:
-            return failed.reply()
-
-    def forward_then(
-        self, name: str, body: bytes, *, token: str, content_type: str | None, then: Callable[[ServiceReply], None]
-    ) -> None:
-        """:meth:`forward` with the reply handed to ``then`` (see ServiceCalls.call_then)."""
-        self.calls.call_then(name, body, caller=self.fences.admit(token), content_type=content_type, then=then)
+            reply = failed.reply()
+        return Response(reply.body, status_code=reply.status, media_type=reply.content_type)
 
     async def latest_frame(self, name: str) -> bytes | None:
         """The latest message of topic ``name`` (JSON), from the core or a publisher, if any."""
@@ -131,38 +120,5 @@ class Gateway:
     def _find_topic(self, websocket: WebSocket) -> GatewayTopic:
         name = resolve_name(websocket.scope["path"])  # InvalidNameError closes with 1008
         declared = declared_type(websocket.query_params.get("type"))
-        return GatewayTopic(self._core, self._registry, name, declared, visitor=self.fences.admit(presented_token(websocket)))
+        return GatewayTopic(self._core, self._registry, name, declared, visitor=self._fences.admit(presented_token(websocket)))
 
-
-class ServiceCallsFirst:
-    """A POST to a registered service's name, taken before FastAPI's own layers (its error,
-    telemetry and body-limit middleware, routing): the gateway's half of a forwarded call.
-
-    Profiling the core during gateway calls showed those layers, which such a call does not
-    use, cost a fifth of its work. Used by the core's app (:class:`services.core.app.CoreApp`),
-    inside the edge checks every request meets (origin, body size), which asks :meth:`takes`
-    first.
-    """
-
-    def __init__(self, registry: Registry, gateway: Callable[[], Gateway | None]) -> None:
-        self._registry = registry
-        self._gateway = gateway
-
-    def takes(self, scope: Scope) -> bool:
-        """Whether ``scope`` is a POST to a registered service (while the gateway runs)."""
-        return scope["type"] == "http" and scope["method"] == "POST" and self.gateway_for(scope["path"]) is not None
-
-    def gateway_for(self, path: str) -> Gateway | None:
-        """The gateway, if ``path`` names a registered service and the gateway runs."""
-        gateway = self._gateway()
-        if gateway is None or self._registry.service(path) is None:
-            return None
-        return gateway
-
-    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
-        gateway = self._gateway()
-        if gateway is None:  # stopped between takes() and here: as a stopped core answers
-            await _error(503, "the core is shutting down")(scope, receive, send)
-            return
-        response = await gateway._call_service(scope["path"], Request(scope, receive))
-        await response(scope, receive, send)

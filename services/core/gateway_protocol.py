@@ -10,9 +10,9 @@ So the core's server speaks HTTP itself first (uvicorn's ``http=`` option takes 
 - A connection starts here. A request that is a plain service call (POST, HTTP/1.1 keep-alive,
   a registered service's name with no ``%``-escapes and no query, a ``Content-Length`` within the
   size limit, no ``Origin``, ``Expect`` or ``Transfer-Encoding``) is parsed by httptools and
-  forwarded through :meth:`Gateway.forward_then`, the callback form of the call the ASGI route
-  makes, so its checks, statuses and error details are the same; the reply is written from the
-  node reply's own I/O callback (no task, no turn of the loop: docs/performance.md).
+  forwarded through :meth:`ServiceCalls.start`, the one call path every caller takes, so its
+  checks, statuses and error details are those of the ASGI route's; the reply is written from
+  the node reply's own I/O callback (no task, no turn of the loop: docs/performance.md).
 - Any other request (a browser's, a WebSocket upgrade, a GET, a call with ``?token=``, anything
   unusual or malformed) hands the connection, with every byte of that request, to uvicorn's own
   httptools protocol, which serves it and the rest of the connection as it serves any app. The
@@ -28,19 +28,17 @@ from __future__ import annotations
 import asyncio
 import logging
 from http import HTTPStatus
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol, cast
 
 import httptools
 from uvicorn.protocols.http.httptools_impl import HttpToolsProtocol
 
-from services.core.service_calls import ServiceReply
+from services.core.service_calls import CallOutcome, ServiceCalls, ServiceReply
 from services.runtime.auth import bearer_token
 
 if TYPE_CHECKING:
     from uvicorn.config import Config
     from uvicorn.server import ServerState
-
-    from services.core.gateway import Gateway, ServiceCallsFirst
 
 __all__ = ["GatewayHttpProtocol"]
 
@@ -49,12 +47,19 @@ logger = logging.getLogger("skydeck.core")
 # Request headers that take a call off the fast path (a browser's page, a streamed or held body).
 _DECLINED_HEADERS = frozenset({b"origin", b"transfer-encoding", b"expect"})
 _REASONS = {status.value: status.phrase.encode("ascii") for status in HTTPStatus}
+_FAULT = ServiceReply(500, b"Internal Server Error", "text/plain; charset=utf-8")
+
+
+class _ServesCalls(Protocol):
+    """An app whose service calls the protocol forwards (the core's: CoreApp)."""
+
+    service_calls: ServiceCalls | None  # None while the core is not running
 
 
 class _Call:
     """The request being read: what the forward needs, and whether it may take the fast path."""
 
-    __slots__ = ("authorization", "body", "complete", "content_length", "content_type", "fast", "gateway", "name", "url")
+    __slots__ = ("authorization", "body", "calls", "complete", "content_length", "content_type", "fast", "name", "url")
 
     def __init__(self) -> None:
         self.url = b""
@@ -64,12 +69,15 @@ class _Call:
         self.content_type: str | None = None
         self.content_length = 0
         self.fast = True  # until a header or the request line says otherwise
-        self.gateway: Gateway | None = None
+        self.calls: ServiceCalls | None = None  # who forwards it, once its headers say it is a call
         self.complete = False
 
 
 class GatewayHttpProtocol(asyncio.Protocol):
     """One HTTP connection to the core (made by uvicorn, whose ``config.app`` is the CoreApp)."""
+
+    # Set by connection_made, which asyncio calls before any other method.
+    _transport: asyncio.Transport
 
     def __init__(
         self, config: Config, server_state: ServerState, app_state: dict[str, Any], _loop: Any = None
@@ -77,15 +85,16 @@ class GatewayHttpProtocol(asyncio.Protocol):
         self._config = config
         self._server_state = server_state
         self._app_state = app_state
-        self._uvicorn_loop = _loop
+        # Kept: on Python 3.11 each asyncio.get_running_loop() is a getpid() system call, and the
+        # forward path would make several per call. uvicorn makes protocols in the loop's thread.
+        self._loop: asyncio.AbstractEventLoop = _loop or asyncio.get_running_loop()
         app = config.app
-        self._first: ServiceCallsFirst | None = getattr(app, "service_calls_first", None)
+        self._app = cast("_ServesCalls", app) if hasattr(app, "service_calls") else None
         self._max_bytes: int = getattr(app, "max_message_bytes", 0)
         self._parser = httptools.HttpRequestParser(self)
-        self._transport: asyncio.Transport | None = None
         self._received: list[bytes] = []  # every byte of the request being read (for a hand-off)
         self._received_bytes = 0
-        self._call: _Call | None = None
+        self._call = _Call()
         self._calls_begun = 0  # in the bytes fed since the last reply: more than one is pipelining
         self._waiting: list[bytes] = []  # bytes that came while a call was forwarded
         self._forwarding = False
@@ -94,17 +103,13 @@ class GatewayHttpProtocol(asyncio.Protocol):
         self._idle_since = 0.0
         self._default_headers_of: object = None  # uvicorn's list of them, and it as bytes
         self._default_headers_bytes = b""
-        # Kept from connection_made: on Python 3.11 each asyncio.get_running_loop() is a getpid()
-        # system call, and the forward path would make several per call.
-        self._loop: asyncio.AbstractEventLoop | None = None
 
     # -- asyncio.Protocol ----------------------------------------------------------------------
 
     def connection_made(self, transport: asyncio.BaseTransport) -> None:
         self._transport = transport  # type: ignore[assignment]
-        self._loop = asyncio.get_running_loop()
         self._server_state.connections.add(self)  # type: ignore[arg-type]
-        if self._first is None:  # not the core's app: nothing to take here
+        if self._app is None:  # not the core's app: nothing to take here
             self._hand_off()
             return
         self._idle_since = self._loop.time()
@@ -113,7 +118,7 @@ class GatewayHttpProtocol(asyncio.Protocol):
     def data_received(self, data: bytes) -> None:
         if self._forwarding:
             self._waiting.append(data)
-            self._transport.pause_reading()  # type: ignore[union-attr]  # read on after the reply
+            self._transport.pause_reading()  # read on after the reply
             return
         self._received.append(data)
         self._received_bytes += len(data)
@@ -122,13 +127,13 @@ class GatewayHttpProtocol(asyncio.Protocol):
         except (httptools.HttpParserError, httptools.HttpParserUpgrade):
             self._hand_off()  # uvicorn answers the malformed request, or upgrades the WebSocket
             return
+        if self._calls_begun == 0:
+            return  # not a byte of a request yet
         call = self._call
-        if call is None:
-            return
         if not call.fast or self._calls_begun > 1 or self._received_bytes > self._max_bytes + 65536:
             self._hand_off()
-        elif call.complete:
-            self._forward(call)
+        elif call.complete and call.calls is not None:  # (a complete call still fast was taken)
+            self._forward(call, call.calls)
 
     def connection_lost(self, exc: Exception | None) -> None:
         self._server_state.connections.discard(self)  # type: ignore[arg-type]
@@ -137,7 +142,7 @@ class GatewayHttpProtocol(asyncio.Protocol):
     def shutdown(self) -> None:
         """The server stops: an idle connection closes now, a busy one after its reply."""
         self._closing = True
-        if not self._forwarding and self._transport is not None:
+        if not self._forwarding:
             self._transport.close()
 
     # -- httptools callbacks -------------------------------------------------------------------
@@ -147,12 +152,10 @@ class GatewayHttpProtocol(asyncio.Protocol):
         self._call = _Call()
 
     def on_url(self, url: bytes) -> None:
-        assert self._call is not None
         self._call.url += url
 
     def on_header(self, name: bytes, value: bytes) -> None:
         call = self._call
-        assert call is not None
         name = name.lower()
         if name == b"content-length":
             call.content_length = int(value) if value.isdigit() else -1
@@ -165,10 +168,11 @@ class GatewayHttpProtocol(asyncio.Protocol):
 
     def on_headers_complete(self) -> None:
         call = self._call
-        assert call is not None and self._first is not None
         parser = self._parser
+        calls = self._app.service_calls if self._app is not None else None
         if (
-            not call.fast
+            calls is None
+            or not call.fast
             or parser.get_method() != b"POST"
             or parser.get_http_version() != "1.1"
             or not parser.should_keep_alive()
@@ -179,44 +183,46 @@ class GatewayHttpProtocol(asyncio.Protocol):
             call.fast = False
             return
         call.name = call.url.decode("latin-1")
-        call.gateway = self._first.gateway_for(call.name)
-        call.fast = call.gateway is not None
+        if calls.serves(call.name):
+            call.calls = calls
+        else:
+            call.fast = False
 
     def on_body(self, body: bytes) -> None:
-        assert self._call is not None
         if self._call.fast:
             self._call.body += body
 
     def on_message_complete(self) -> None:
-        assert self._call is not None
         self._call.complete = True
 
     # -- the fast path -------------------------------------------------------------------------
 
-    def _forward(self, call: _Call) -> None:
-        assert call.gateway is not None
+    def _forward(self, call: _Call, calls: ServiceCalls) -> None:
         self._forwarding = True
         try:
-            call.gateway.forward_then(
-                call.name, call.body, token=bearer_token(call.authorization), content_type=call.content_type, then=self._answer
+            calls.start(
+                call.name,
+                call.body,
+                caller=calls.fences.admit(bearer_token(call.authorization)),
+                content_type=call.content_type,
+                on_done=self._answer,
             )
         except Exception:  # a fault of ours: said in the log, as uvicorn says an app's
             logger.exception("forwarding a call to %s failed", call.name)
             self._closing = True
-            self._answer(ServiceReply(500, b"Internal Server Error", "text/plain; charset=utf-8"))
+            self._answer(_FAULT)
 
-    def _answer(self, reply: ServiceReply) -> None:
+    def _answer(self, outcome: CallOutcome) -> None:
         """The call's reply, from the node reply's I/O callback (or at once, for a refusal)."""
         if not self._forwarding:
             return  # answered already (a fault after the forward had begun)
-        self._write(reply)
+        self._write(outcome if isinstance(outcome, ServiceReply) else outcome.reply())
         self._forwarding = False
         self._received.clear()
         self._received_bytes = 0
-        self._call = None
         self._calls_begun = 0
         transport = self._transport
-        if transport is None or transport.is_closing():
+        if transport.is_closing():
             return
         if self._closing:
             transport.close()
@@ -227,11 +233,11 @@ class GatewayHttpProtocol(asyncio.Protocol):
             transport.resume_reading()
             self.data_received(waiting)
         else:
-            self._idle_since = self._loop.time()  # type: ignore[union-attr]
+            self._idle_since = self._loop.time()
 
     def _write(self, reply: ServiceReply) -> None:
         transport = self._transport
-        if transport is None or transport.is_closing():
+        if transport.is_closing():
             return  # the client left: the node's reply has nowhere to go
         content_type = b"content-type: %s\r\n" % reply.content_type.encode("latin-1") if reply.content_type else b""
         transport.write(
@@ -253,11 +259,10 @@ class GatewayHttpProtocol(asyncio.Protocol):
     def _hand_off(self) -> None:
         """Give the connection, with the bytes of the request being read, to uvicorn's protocol."""
         transport = self._transport
-        assert transport is not None
         self._cancel_idle_timer()
         self._server_state.connections.discard(self)  # type: ignore[arg-type]
         uvicorn_protocol = HttpToolsProtocol(
-            config=self._config, server_state=self._server_state, app_state=self._app_state, _loop=self._uvicorn_loop
+            config=self._config, server_state=self._server_state, app_state=self._app_state, _loop=self._loop
         )
         transport.set_protocol(uvicorn_protocol)
         uvicorn_protocol.connection_made(transport)
@@ -270,7 +275,6 @@ class GatewayHttpProtocol(asyncio.Protocol):
     # One timer per connection, not one per call: it looks at how long the connection has been
     # idle when it fires, and closes it or waits for the rest of the keep-alive timeout.
     def _arm_idle_timer(self, delay_s: float) -> None:
-        assert self._loop is not None
         self._idle_timer = self._loop.call_later(delay_s, self._idle)
 
     def _cancel_idle_timer(self) -> None:
@@ -279,7 +283,6 @@ class GatewayHttpProtocol(asyncio.Protocol):
             self._idle_timer = None
 
     def _idle(self) -> None:
-        assert self._loop is not None and self._transport is not None
         timeout_s = self._config.timeout_keep_alive
         if self._forwarding or self._received:  # busy: not idle at all
             self._arm_idle_timer(timeout_s)

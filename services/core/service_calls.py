@@ -1,9 +1,9 @@
 """The one way a call reaches a service through the core, whoever asks.
 
 ``POST /NAME`` over HTTP and the protocol adapters' calls (rosbridge's ``call_service``,
-Foxglove's service requests) all go through :meth:`ServiceCalls.call` (or
-:meth:`ServiceCalls.call_then`, its callback form, which the core's HTTP connections use), so the
-same checks and the same failures apply to every caller, each edge mapping them to its own reply:
+Foxglove's service requests) all go through :meth:`ServiceCalls.start` (awaited:
+:meth:`ServiceCalls.call`), so the same checks and the same failures apply to every caller, each
+edge mapping them to its own reply:
 
     404  no service has that name (405: it is a topic)
     401  no token, or one nobody has, where one is needed (:mod:`services.access.policy`)
@@ -35,15 +35,23 @@ from dataclasses import dataclass
 
 from pydantic import ValidationError
 
-from services.access import Pass, RateLimited, service_verb
+from services.access import Fences, Pass, RateLimited, service_verb
 from services.core.guests import Guests
 from services.core.registry import Registry
 from services.core.settings import CoreSettings
 from services.runtime.errors import ServiceError
-from services.runtime.http_client import HttpClient, HttpError, HttpReply, HttpTimeout, Outcome
+from services.runtime.http_client import (
+    Cancellable,
+    HttpClient,
+    HttpError,
+    HttpReply,
+    HttpTimeout,
+    Outcome,
+    outcome_of,
+)
 from shared_models.errors import SkydeckError
 
-__all__ = ["CALLER", "ServiceCallFailed", "ServiceCalls", "ServiceReply", "error_reply"]
+__all__ = ["CALLER", "CallOutcome", "ServiceCallFailed", "ServiceCalls", "ServiceReply", "error_reply"]
 
 JSON = "application/json"
 logger = logging.getLogger("skydeck.core")
@@ -94,6 +102,10 @@ class ServiceCallFailed(ServiceError):
         return error_reply(self.status, str(self))
 
 
+CallOutcome = ServiceReply | ServiceCallFailed
+"""What a call came to: the service's reply (of any status), or why none came."""
+
+
 @dataclass(slots=True)
 class _Target:
     """The node a call goes to, and the request's headers for it."""
@@ -123,12 +135,19 @@ class _Target:
 class ServiceCalls:
     """Routes a call to the node hosting the service (or answers it here for a guest)."""
 
-    def __init__(self, registry: Registry, guests: Guests, settings: CoreSettings, http: HttpClient) -> None:
+    def __init__(
+        self, registry: Registry, guests: Guests, settings: CoreSettings, http: HttpClient, fences: Fences
+    ) -> None:
+        self.fences = fences  # the core's: a caller that comes with a token only is admitted by them
         self._registry = registry
         self._guests = guests
         self._settings = settings
         self._http = http
-        self._hosted_calls: set[asyncio.Task[None]] = set()  # call_then's, kept until they end
+        self._hosted_calls: set[asyncio.Task[None]] = set()  # kept until they end: the loop holds tasks weakly
+
+    def serves(self, name: str) -> bool:
+        """Whether ``name`` is a registered service's (a POST to it is a call through the core)."""
+        return self._registry.service(name) is not None
 
     async def call(
         self,
@@ -143,47 +162,58 @@ class ServiceCalls:
 
         Raises ServiceCallFailed when no service answered; see the module docstring.
         """
-        timeout_s = timeout_s or self._settings.gateway_timeout_s
-        target = self._target(name, body, caller=caller, content_type=content_type)
-        try:
-            if target is None:
-                return await self._answer_hosted(name, body, caller=caller, timeout_s=timeout_s)
-            try:
-                reply = await self._http.post(target.url, body, headers=target.headers, timeout_s=timeout_s)
-            except (ValueError, HttpError) as error:
-                raise target.failed(error, timeout_s) from None
-            return _served(reply)
-        finally:
-            _call_ended(caller)
+        outcome: CallOutcome = await outcome_of(
+            lambda on_done: self.start(
+                name, body, caller=caller, timeout_s=timeout_s, content_type=content_type, on_done=on_done
+            )
+        )
+        if isinstance(outcome, ServiceCallFailed):
+            raise outcome
+        return outcome
 
-    def call_then(
-        self, name: str, body: bytes, *, caller: Pass, content_type: str | None, then: Callable[[ServiceReply], None]
-    ) -> None:
-        """:meth:`call`, for a caller that takes the reply in a callback (the core's HTTP
-        connections): ``then`` gets the service's reply, or an :func:`error_reply` saying why none
-        came. It is called from the node reply's own I/O callback, with no task and no turn of the
-        loop between (a forwarded call's busiest path: docs/performance.md)."""
-        timeout_s = self._settings.gateway_timeout_s
+    def start(
+        self,
+        name: str,
+        body: bytes,
+        *,
+        caller: Pass,
+        on_done: Callable[[CallOutcome], None],
+        timeout_s: float | None = None,
+        content_type: str | None = JSON,
+    ) -> Cancellable | None:
+        """The call itself, :meth:`call` being it awaited: ``on_done`` gets the service's reply, or
+        the ServiceCallFailed of why none came, once. For a service on a node it is called from
+        the node reply's own I/O callback, with no task and no turn of the loop between (the core's
+        HTTP connections forward calls so: a forwarded call's busiest path, docs/performance.md).
+        Returns what cancels the call, if it is still out."""
+        timeout_s = timeout_s or self._settings.gateway_timeout_s
         try:
             target = self._target(name, body, caller=caller, content_type=content_type)
         except ServiceCallFailed as failed:
-            then(failed.reply())
-            return
+            on_done(failed)
+            return None
         if target is None:
-            task = asyncio.get_running_loop().create_task(self._hosted_then(name, body, caller, timeout_s, then))
+            task = asyncio.get_running_loop().create_task(self._hosted(name, body, caller, timeout_s, on_done))
             self._hosted_calls.add(task)
             task.add_done_callback(self._hosted_calls.discard)
-            return
+            return task
+        counted = None if caller.bucket is None else _Counted(caller)
 
         def replied(outcome: Outcome) -> None:
-            _call_ended(caller)
-            then(_served(outcome) if isinstance(outcome, HttpReply) else target.failed(outcome, timeout_s).reply())
+            if counted is not None:
+                counted.end()
+            on_done(_served(outcome) if isinstance(outcome, HttpReply) else target.failed(outcome, timeout_s))
 
         try:
-            self._http.start("POST", target.url, body, headers=target.headers, timeout_s=timeout_s, on_done=replied)
+            exchange = self._http.start("POST", target.url, body, headers=target.headers, timeout_s=timeout_s, on_done=replied)
         except (ValueError, HttpError) as error:
             _call_ended(caller)
-            then(target.failed(error, timeout_s).reply())
+            on_done(target.failed(error, timeout_s))
+            return None
+        if counted is None:
+            return exchange
+        counted.exchange = exchange
+        return counted
 
     def _target(self, name: str, body: bytes, *, caller: Pass, content_type: str | None) -> _Target | None:
         """Where a call of ``name`` goes (None: a service hosted here), or ServiceCallFailed.
@@ -208,8 +238,8 @@ class ServiceCalls:
             headers["authorization"] = f"Bearer {token}"
         return _Target(name, record.description.name, record.description.url.rstrip("/") + name, headers)
 
-    async def _hosted_then(
-        self, name: str, body: bytes, caller: Pass, timeout_s: float, then: Callable[[ServiceReply], None]
+    async def _hosted(
+        self, name: str, body: bytes, caller: Pass, timeout_s: float, on_done: Callable[[CallOutcome], None]
     ) -> None:
         try:
             reply = await self._answer_hosted(name, body, caller=caller, timeout_s=timeout_s)
@@ -218,7 +248,7 @@ class ServiceCalls:
             reply = error_reply(500, f"{name} failed in the core: see its log")
         finally:
             _call_ended(caller)
-        then(reply)
+        on_done(reply)
 
     async def call_hosted(self, name: str, body: bytes, *, caller: Pass) -> ServiceReply:
         """Answer a call to a service the core hosts for a guest, as a node's route would (its
@@ -279,6 +309,27 @@ def _admit(name: str, body: bytes, caller: Pass) -> None:
 def _call_ended(caller: Pass) -> None:
     if caller.bucket is not None:
         caller.bucket.call_ended()
+
+
+class _Counted:
+    """A limited caller's call under way, ended once as one of the caller's calls in flight: by
+    its reply, or by a cancel (after which no reply comes)."""
+
+    __slots__ = ("_caller", "exchange")
+
+    def __init__(self, caller: Pass) -> None:
+        self._caller: Pass | None = caller
+        self.exchange: Cancellable | None = None
+
+    def end(self) -> None:
+        if self._caller is not None:
+            _call_ended(self._caller)
+            self._caller = None
+
+    def cancel(self) -> None:
+        if self.exchange is not None:
+            self.exchange.cancel()
+        self.end()
 
 
 def _served(reply: HttpReply) -> ServiceReply:

@@ -9,6 +9,7 @@ launch file is missing or wrong); both carry one line for the user.
 
 from services.launch.arguments import LaunchArgument, show_arguments
 from services.launch.errors import LaunchError, LaunchFileError
+from services.launch.launched import NodeState, NodeStatus
 from services.launch.plan import (
     DEFAULT_BASE_PORT,
     LaunchOptions,
@@ -17,7 +18,8 @@ from services.launch.plan import (
     default_command,
     plan_launch,
 )
-from services.launch.roslaunch import RosLaunch, RosNode, is_roslaunch_file, load_roslaunch_file
+from services.launch.roslaunch import RosLaunch, RosNode, is_roslaunch_file
+from services.launch.roslaunch_reader import load_roslaunch_file
 from services.launch.run import core_answers, launch_arguments, run_launch
 from services.launch.spec import (
     BUILTIN_RUNS,
@@ -29,7 +31,7 @@ from services.launch.spec import (
     load_launch_file,
     shipped_launch_files,
 )
-from services.launch.supervisor import CommandFor, NodeState, NodeStatus, Supervisor
+from services.launch.supervisor import CommandFor, Supervisor
 
 __all__ = [
     "BUILTIN_RUNS",

@@ -20,11 +20,11 @@ import signal
 import subprocess
 import threading
 import time
-import urllib.request
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 
 from services.launch.child_process import signal_group
+from services.runtime.http_client import HttpError, request_once
 from shared_models.errors import SkydeckError
 
 __all__ = ["BackgroundProcess", "ProcessFailed"]
@@ -135,8 +135,8 @@ class BackgroundProcess:
         while True:
             if self.returncode is not None:
                 raise self._failure(f"exited ({self.returncode}) before {url} answered")
-            with contextlib.suppress(OSError), urllib.request.urlopen(url, timeout=1.0) as reply:
-                if reply.status == 200:
+            with contextlib.suppress(HttpError):
+                if request_once("GET", url, timeout_s=1.0).status == 200:
                     return
             if time.monotonic() > deadline:
                 raise self._failure(f"{url} did not answer within {timeout_s:g} s")

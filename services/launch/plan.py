@@ -15,18 +15,20 @@ import dataclasses
 import math
 import random
 import sys
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
 from services.launch.errors import LaunchError
 from services.launch.spec import LaunchSpec, NodeSpec
 from services.protocols.endpoints import DEFAULT_BASE_PORT, ENDPOINTS, Endpoint
+from services.runtime.ports import port_is_free
 from sim_server.worlds import WORLDS, default_world, world_options  # the table only: no PyBullet
 
 __all__ = [
     "DEFAULT_BASE_PORT",
     "LaunchOptions",
     "NodePlan",
+    "check_ports_free",
     "core_url",
     "default_command",
     "plan_launch",
@@ -223,3 +225,23 @@ def _plan(node: NodeSpec, base_port: int, values: dict[str, str]) -> NodePlan:
         ready_timeout_s=node.ready_timeout_s,
         is_core=node.is_core,
     )
+
+
+def check_ports_free(plans: Sequence[NodePlan], options: LaunchOptions) -> None:
+    """LaunchError naming the first port of the launch (a node's, the core's endpoints') in use."""
+    for plan in plans:
+        if not port_is_free(plan.port):
+            raise LaunchError(
+                f"port {plan.port} for {plan.name} is already in use: is another launch or "
+                "node running? stop it or choose another --base-port",
+                node=plan.name,
+            )
+    if not any(plan.is_core for plan in plans):
+        return
+    for endpoint, port in options.core_endpoints().items():
+        if port and not port_is_free(port):
+            raise LaunchError(
+                f"port {port} for the core's {endpoint.name} endpoint is already in use (another Skydeck "
+                f"or {endpoint.name} server?): choose another with {endpoint.flag} PORT, or "
+                f"{endpoint.flag} 0 to turn it off"
+            )

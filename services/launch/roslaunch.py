@@ -20,7 +20,7 @@ value; ``name:=value`` on the command line or in an ``<include>``), ``<remap>``,
 substitutions ``$(arg)``, ``$(find)``, ``$(env)``, ``$(optenv)``, ``$(dirname)``, ``$(anon)``.
 A node's ``type`` is a Python file of its package (:mod:`services.launch.ros_packages`).
 
-What it becomes (:meth:`RosLaunch.spec`): one launch for the supervisor that runs YAML launch
+Read by :func:`services.launch.roslaunch_reader.load_roslaunch_file`. What it becomes (:meth:`RosLaunch.spec`): one launch for the supervisor that runs YAML launch
 files, each node ``skydeck run FILE.py`` with ROS 1's arguments as roslaunch passes them
 (``__name:=``, ``__ns:=``, ``from:=to``), on base port + 2, + 3, ... in file order (the core,
 when this launch starts it, on the base port); and the parameters, which the supervisor sets on
@@ -30,7 +30,6 @@ the line; an attribute Skydeck does not use is a warning, a tag it does not know
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -39,7 +38,7 @@ from services.launch.arguments import literal
 from services.launch.errors import LaunchFileError
 from services.launch.spec import LaunchSpec, NodeSpec
 
-__all__ = ["NODE_PORT_OFFSET", "RosLaunch", "RosNode", "is_roslaunch_file", "load_roslaunch_file"]
+__all__ = ["NODE_PORT_OFFSET", "RosLaunch", "RosNode", "is_roslaunch_file"]
 
 NODE_PORT_OFFSET = 2
 """The first node's port is the base port + this (+1 is the simulator's, as in the workshop's)."""
@@ -102,20 +101,3 @@ class RosLaunch:
         if not nodes:
             raise LaunchFileError(self.file, "the launch file starts no node (and a core already runs)")
         return LaunchSpec(nodes=tuple(nodes))
-
-
-def load_roslaunch_file(
-    path: str | Path, args: Mapping[str, str] | None = None, *, environ: Mapping[str, str] | None = None
-) -> RosLaunch:
-    """Read a roslaunch file, with ``args`` as its command line's ``name:=value`` and
-    ``environ`` for its ``$(env NAME)`` (default: the launcher's, :class:`LaunchSettings`).
-
-    Raises ``LaunchFileError`` with one line naming the file, the line and the problem.
-    """
-    from services.launch.roslaunch_reader import read_roslaunch
-    from services.launch.settings import LaunchSettings
-
-    path = Path(path).resolve() if Path(path).exists() else Path(path)
-    environment = environ if environ is not None else LaunchSettings().environment
-    nodes, parameters, warnings = read_roslaunch(path, dict(args or {}), environment)
-    return RosLaunch(path, tuple(nodes), tuple(parameters), tuple(warnings))

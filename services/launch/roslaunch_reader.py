@@ -1,6 +1,6 @@
-"""Reading a roslaunch XML file (what :func:`services.launch.roslaunch.load_roslaunch_file` does):
-its elements with their line numbers, scopes (namespace, args, remaps, environment), the
-``$(...)`` substitutions, and each tag. The tags and what they become are described in
+"""Reading a roslaunch XML file (:func:`load_roslaunch_file`): scopes (namespace, args, remaps,
+environment), the ``$(...)`` substitutions, and each tag, from its elements with their line
+numbers (:mod:`services.launch.roslaunch_xml`). The tags and what they become are described in
 :mod:`services.launch.roslaunch`.
 """
 
@@ -10,82 +10,26 @@ import itertools
 import os
 import re
 import shlex
-import xml.parsers.expat
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import yaml
 
-from services.launch.arguments import LaunchArgument
 from services.launch.errors import LaunchFileError
 from services.launch.ros_packages import PackageNotFound, RosPackage, find_package, package_of
-from services.launch.roslaunch import RosNode
+from services.launch.roslaunch import RosLaunch, RosNode
+from services.launch.roslaunch_xml import Element, read_xml
+from services.launch.settings import LaunchSettings
 from services.runtime.rosparam import check_parameter_value, parameter_tokens
 from shared_models.names import InvalidNameError, resolve_name, resolve_node_name
 
-__all__ = ["declared_arguments", "read_roslaunch"]
+__all__ = ["load_roslaunch_file"]
 
 _MAX_INCLUDE_DEPTH = 16
 _SUBSTITUTION = re.compile(r"\$\(([^()]*)\)")
 _IF = ("if", "unless")
-
-
-# -- XML with line numbers ---------------------------------------------------------------------
-
-
-@dataclass
-class _Element:
-    tag: str
-    attributes: dict[str, str]
-    line: int
-    children: list[_Element] = field(default_factory=list)
-    text: str = ""
-
-
-def _read_xml(path: Path) -> _Element:
-    try:
-        data = path.read_bytes()
-    except FileNotFoundError:
-        raise LaunchFileError(path, "no such launch file") from None
-    except IsADirectoryError:
-        raise LaunchFileError(path, "is a folder, not a launch file") from None
-    except OSError as error:
-        raise LaunchFileError(path, f"cannot read it: {error.strerror or error}") from None
-    parser = xml.parsers.expat.ParserCreate()
-    stack: list[_Element] = []
-    roots: list[_Element] = []
-
-    def start(tag: str, attributes: dict[str, str]) -> None:
-        element = _Element(tag, attributes, parser.CurrentLineNumber)
-        (stack[-1].children if stack else roots).append(element)
-        stack.append(element)
-
-    def end(tag: str) -> None:
-        stack.pop()
-
-    def text(data: str) -> None:
-        if stack:
-            stack[-1].text += data
-
-    def no_doctype(*_: Any) -> None:
-        raise LaunchFileError(path, f"line {parser.CurrentLineNumber}: a launch file has no DOCTYPE")
-
-    parser.StartElementHandler = start
-    parser.EndElementHandler = end
-    parser.CharacterDataHandler = text
-    parser.StartDoctypeDeclHandler = no_doctype
-    try:
-        parser.Parse(data, True)
-    except xml.parsers.expat.ExpatError as error:
-        problem = xml.parsers.expat.ErrorString(error.code)
-        raise LaunchFileError(path, f"line {error.lineno}, column {error.offset + 1}: not valid XML: {problem}") from None
-    if not roots:
-        raise LaunchFileError(path, "the file is empty: expected <launch>...</launch>")
-    if roots[0].tag != "launch":
-        raise LaunchFileError(path, f"line {roots[0].line}: the top element is <{roots[0].tag}>, expected <launch>")
-    return roots[0]
 
 
 # -- reading ------------------------------------------------------------------------------------
@@ -130,14 +74,14 @@ class _Reader:
     # -- errors and warnings --------------------------------------------------------------------
 
     @staticmethod
-    def fail(scope: _Scope, element: _Element, problem: str) -> LaunchFileError:
+    def fail(scope: _Scope, element: Element, problem: str) -> LaunchFileError:
         return LaunchFileError(scope.file, f"line {element.line}: <{element.tag}>: {problem}")
 
-    def warn(self, scope: _Scope, element: _Element, problem: str) -> None:
+    def warn(self, scope: _Scope, element: Element, problem: str) -> None:
         self.warnings.append(f"{scope.file.name}:{element.line}: <{element.tag}>: {problem}")
 
     def attributes(
-        self, scope: _Scope, element: _Element, *, required: tuple[str, ...] = (), optional: tuple[str, ...] = (),
+        self, scope: _Scope, element: Element, *, required: tuple[str, ...] = (), optional: tuple[str, ...] = (),
         ignored: tuple[str, ...] = (),
     ) -> dict[str, str]:  # fmt: skip
         """The element's attributes, substituted; missing required ones fail, unknown ones warn."""
@@ -155,7 +99,7 @@ class _Reader:
                 raise self.fail(scope, element, f"the attribute {name!r} is required")
         return values
 
-    def wanted(self, scope: _Scope, element: _Element, values: Mapping[str, str]) -> bool:
+    def wanted(self, scope: _Scope, element: Element, values: Mapping[str, str]) -> bool:
         """Whether ``if``/``unless`` let the element through."""
         if "if" in values and "unless" in values:
             raise self.fail(scope, element, "give `if` or `unless`, not both")
@@ -169,11 +113,11 @@ class _Reader:
 
     # -- substitution -----------------------------------------------------------------------------
 
-    def substitute(self, scope: _Scope, element: _Element, text: str) -> str:
+    def substitute(self, scope: _Scope, element: Element, text: str) -> str:
         """``text`` with its ``$(...)`` replaced (see the module docstring)."""
         return _SUBSTITUTION.sub(lambda match: self._one(scope, element, match.group(1).split()), text)
 
-    def _one(self, scope: _Scope, element: _Element, words: list[str]) -> str:
+    def _one(self, scope: _Scope, element: Element, words: list[str]) -> str:
         command, arguments = (words[0], words[1:]) if words else ("", [])
         if command == "arg" and len(arguments) == 1:
             name = arguments[0]
@@ -209,7 +153,7 @@ class _Reader:
     # -- the tags -------------------------------------------------------------------------------
 
     def read_file(self, scope: _Scope) -> None:
-        root = _read_xml(scope.file)
+        root = read_xml(scope.file)
         self.attributes(scope, root, ignored=("deprecated",))
         self.read_children(scope, root)
         unused = sorted(set(scope.passed) - scope.used)
@@ -218,7 +162,7 @@ class _Reader:
                 scope.file, f"{', '.join(unused)}: given but not declared here (no <arg name=\"{unused[0]}\">)"
             )
 
-    def read_children(self, scope: _Scope, parent: _Element) -> None:
+    def read_children(self, scope: _Scope, parent: Element) -> None:
         handlers = {
             "arg": self.read_arg,
             "param": self.read_param,
@@ -237,11 +181,11 @@ class _Reader:
                 raise self.fail(scope, element, f"not a tag Skydeck knows here (it reads: {', '.join(handlers)})")
             handler(scope, element)
 
-    def skip(self, scope: _Scope, element: _Element) -> None:
+    def skip(self, scope: _Scope, element: Element) -> None:
         what = "tests are not run" if element.tag == "test" else "every node runs on this machine"
         self.warn(scope, element, f"skipped: {what} by skydeck launch")
 
-    def read_arg(self, scope: _Scope, element: _Element) -> None:
+    def read_arg(self, scope: _Scope, element: Element) -> None:
         values = self.attributes(scope, element, required=("name",), optional=("default", "value", "doc"))
         if not self.wanted(scope, element, values):
             return
@@ -259,7 +203,7 @@ class _Reader:
         else:
             scope.args[name] = values.get("value", values.get("default", _REQUIRED))
 
-    def read_param(self, scope: _Scope, element: _Element, private: str | None = None) -> None:
+    def read_param(self, scope: _Scope, element: Element, private: str | None = None) -> None:
         values = self.attributes(
             scope, element, required=("name",), optional=("value", "type", "textfile", "binfile", "command")
         )
@@ -277,7 +221,7 @@ class _Reader:
             value = self.typed(scope, element, values["value"], values.get("type", "auto"))
         self.set_parameter(scope, element, name, value)
 
-    def read_text(self, scope: _Scope, element: _Element, name: str, attribute: str) -> str:
+    def read_text(self, scope: _Scope, element: Element, name: str, attribute: str) -> str:
         """The text of the file ``name`` (relative to the launch file's folder)."""
         path = Path(name)
         path = path if path.is_absolute() else scope.file.parent / path
@@ -286,7 +230,7 @@ class _Reader:
         except OSError as error:
             raise self.fail(scope, element, f"{attribute} {path}: cannot read it ({error.strerror or error})") from None
 
-    def typed(self, scope: _Scope, element: _Element, text: str, kind: str) -> Any:
+    def typed(self, scope: _Scope, element: Element, text: str, kind: str) -> Any:
         """A ``<param value>`` read as its ``type`` says (``auto``: bool, int, double or str)."""
         try:
             if kind == "str" or kind == "string":
@@ -313,7 +257,7 @@ class _Reader:
                 pass
         return text
 
-    def read_rosparam(self, scope: _Scope, element: _Element, private: str | None = None) -> None:
+    def read_rosparam(self, scope: _Scope, element: Element, private: str | None = None) -> None:
         values = self.attributes(scope, element, optional=("command", "file", "param", "ns", "subst_value"))
         if not self.wanted(scope, element, values):
             return
@@ -346,7 +290,7 @@ class _Reader:
             self.set_parameter(scope, element, name or "/", value)
 
     def parameter_name(
-        self, scope: _Scope, element: _Element, name: str, private: str | None, *, namespace: str | None = None
+        self, scope: _Scope, element: Element, name: str, private: str | None, *, namespace: str | None = None
     ) -> str:
         """An absolute parameter name: relative ones in the namespace (a node's own, for its
         private parameters), ``~name`` only inside a ``<node>``."""
@@ -367,29 +311,29 @@ class _Reader:
             raise self.fail(scope, element, str(error)) from None
         return full
 
-    def set_parameter(self, scope: _Scope, element: _Element, name: str, value: Any) -> None:
+    def set_parameter(self, scope: _Scope, element: Element, name: str, value: Any) -> None:
         try:
             check_parameter_value(value, name)
         except ValueError as error:
             raise self.fail(scope, element, str(error)) from None
         self.parameters.append((name, value))
 
-    def read_remap(self, scope: _Scope, element: _Element, node: list[tuple[str, str]] | None = None) -> None:
+    def read_remap(self, scope: _Scope, element: Element, node: list[tuple[str, str]] | None = None) -> None:
         values = self.attributes(scope, element, required=("from", "to"))
         if self.wanted(scope, element, values):
             (scope.remaps if node is None else node).append((values["from"], values["to"]))
 
-    def read_env(self, scope: _Scope, element: _Element, node: dict[str, str] | None = None) -> None:
+    def read_env(self, scope: _Scope, element: Element, node: dict[str, str] | None = None) -> None:
         values = self.attributes(scope, element, required=("name", "value"))
         if self.wanted(scope, element, values):
             (scope.env if node is None else node)[values["name"]] = values["value"]
 
-    def read_group(self, scope: _Scope, element: _Element) -> None:
+    def read_group(self, scope: _Scope, element: Element) -> None:
         values = self.attributes(scope, element, optional=("ns",), ignored=("clear_params",))
         if self.wanted(scope, element, values):
             self.read_children(scope.inner(self.namespace(scope, element, values.get("ns", ""))), element)
 
-    def namespace(self, scope: _Scope, element: _Element, ns: str) -> str:
+    def namespace(self, scope: _Scope, element: Element, ns: str) -> str:
         """The namespace ``ns=`` makes: relative to the scope's, or absolute."""
         if not ns:
             return scope.namespace
@@ -400,7 +344,7 @@ class _Reader:
         except InvalidNameError as error:
             raise self.fail(scope, element, f"ns={ns!r}: {error}") from None
 
-    def read_include(self, scope: _Scope, element: _Element) -> None:
+    def read_include(self, scope: _Scope, element: Element) -> None:
         values = self.attributes(scope, element, required=("file",), optional=("ns", "pass_all_args"), ignored=("clear_params",))
         if not self.wanted(scope, element, values):
             return
@@ -432,7 +376,7 @@ class _Reader:
             inner.used.update(passed)
         self.read_file(inner)
 
-    def read_node(self, scope: _Scope, element: _Element) -> None:
+    def read_node(self, scope: _Scope, element: Element) -> None:
         values = self.attributes(
             scope, element, required=("name", "pkg", "type"), optional=("args", "ns", "respawn", "output"),
             ignored=("respawn_delay", "required", "clear_params", "cwd", "launch-prefix", "machine"),
@@ -511,31 +455,15 @@ def _leaves(data: dict[str, Any], prefix: str) -> list[tuple[str, Any]]:
     return pairs
 
 
-def read_roslaunch(
-    path: Path, args: dict[str, str], environ: Mapping[str, str]
-) -> tuple[list[RosNode], list[tuple[str, Any]], list[str]]:
-    """The nodes, parameters and warnings of the launch file at ``path`` given ``args`` (and
-    ``environ`` for its ``$(env)``)."""
-    reader = _Reader(environ)
-    reader.read_file(_Scope(path, package_of(path), "/", {}, {}, args, set(), [], {}))
-    return reader.nodes, reader.parameters, reader.warnings
+def load_roslaunch_file(
+    path: str | Path, args: Mapping[str, str] | None = None, *, environ: Mapping[str, str] | None = None
+) -> RosLaunch:
+    """Read a roslaunch file, with ``args`` as its command line's ``name:=value`` and
+    ``environ`` for its ``$(env NAME)`` (default: the launcher's, :class:`LaunchSettings`).
 
-
-def declared_arguments(path: Path) -> dict[str, LaunchArgument]:
-    """The arguments a roslaunch file takes from its command line (``roslaunch --ros-args``):
-    its settable ``<arg>``s (those with ``value=`` are fixed), in its groups too, in file
-    order; defaults as written (a ``$(...)`` in one is shown, not resolved)."""
-    found: dict[str, LaunchArgument] = {}
-
-    def walk(element: _Element) -> None:
-        for child in element.children:
-            if child.tag == "arg" and "name" in child.attributes and "value" not in child.attributes:
-                found.setdefault(
-                    child.attributes["name"],
-                    LaunchArgument(default=child.attributes.get("default"), description=child.attributes.get("doc", "")),
-                )
-            elif child.tag == "group":
-                walk(child)
-
-    walk(_read_xml(path))
-    return found
+    Raises ``LaunchFileError`` with one line naming the file, the line and the problem.
+    """
+    path = Path(path).resolve() if Path(path).exists() else Path(path)
+    reader = _Reader(environ if environ is not None else LaunchSettings().environment)
+    reader.read_file(_Scope(path, package_of(path), "/", {}, {}, dict(args or {}), set(), [], {}))
+    return RosLaunch(path, tuple(reader.nodes), tuple(reader.parameters), tuple(reader.warnings))

@@ -16,23 +16,23 @@ master: one line says so). Both go to the same :class:`~services.launch.supervis
 from __future__ import annotations
 
 import asyncio
-import contextlib
 import dataclasses
-import json
-import sys
 import urllib.parse
-import urllib.request
 from collections.abc import Mapping
 from pathlib import Path
 from typing import TextIO
 
 from services.launch.arguments import LaunchArgument
 from services.launch.errors import LaunchError
+from services.launch.output import say
 from services.launch.plan import LaunchOptions, core_url
-from services.launch.roslaunch import is_roslaunch_file, load_roslaunch_file
+from services.launch.roslaunch import is_roslaunch_file
+from services.launch.roslaunch_reader import load_roslaunch_file
+from services.launch.roslaunch_xml import declared_arguments
 from services.launch.settings import LaunchSettings
 from services.launch.spec import LaunchSpec, find_launch_file, load_launch_file
 from services.launch.supervisor import Supervisor
+from services.runtime.http_client import HttpError, request_once
 
 __all__ = ["core_answers", "launch_arguments", "run_launch"]
 
@@ -65,7 +65,7 @@ def run_launch(
     if roslaunch:
         ros = load_roslaunch_file(file, launch_args, environ=settings.environment)
         for warning in ros.warnings:
-            _print(out, f"[launch] warning: {warning}")
+            say(out, f"warning: {warning}")
         spec, parameters = ros.spec(start_core=True), ros.parameters
     else:
         spec, parameters = load_launch_file(file, launch_args or {}), ()
@@ -75,7 +75,7 @@ def run_launch(
     url = looked_at or core_url(spec, options)
     running = core_answers(url)
     if running:
-        _print(out, f"[launch] a core answers at {url}: the launch joins it")
+        say(out, f"a core answers at {url}: the launch joins it")
         if roslaunch:
             spec = ros.spec(start_core=False)
         else:
@@ -120,8 +120,6 @@ def launch_arguments(path: str | Path | None = None) -> dict[str, LaunchArgument
     file's settable ``<arg>``s. Raises ``LaunchFileError`` as loading it does."""
     file = find_launch_file(path)
     if is_roslaunch_file(file):
-        from services.launch.roslaunch_reader import declared_arguments
-
         return declared_arguments(file)
     return dict(load_launch_file(file).arguments)
 
@@ -129,16 +127,8 @@ def launch_arguments(path: str | Path | None = None) -> dict[str, LaunchArgument
 def core_answers(url: str) -> bool:
     """Whether a Skydeck core answers at ``url`` (a roslaunch file then uses it, as roslaunch
     uses a running roscore)."""
-    opener = urllib.request.build_opener(urllib.request.ProxyHandler({}))  # loopback: never a proxy
     try:
-        with opener.open(f"{url}/health", timeout=_CORE_PROBE_S) as reply:
-            return bool(json.loads(reply.read()).get("node") == "/skydeck_core")
-    except (OSError, ValueError):
+        reply = request_once("GET", f"{url}/health", timeout_s=_CORE_PROBE_S)
+        return reply.status == 200 and bool(reply.json().get("node") == "/skydeck_core")
+    except (HttpError, ValueError, AttributeError):  # no core, or something else answering there
         return False
-
-
-def _print(out: TextIO | None, line: str) -> None:
-    stream = out or sys.stdout
-    with contextlib.suppress(OSError, ValueError):
-        stream.write(line + "\n")
-        stream.flush()

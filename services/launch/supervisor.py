@@ -3,8 +3,11 @@
     spec = load_launch_file(default_launch_file())
     exit_code = asyncio.run(Supervisor(spec, LaunchOptions(base_port=9000)).run())
 
-Nodes start one at a time in launch order, the core first; each must answer
-``GET /health`` with 200 before the next starts. Every child runs in its own session (its own
+Every node starts at once, the core with them, as roslaunch starts its nodes (each waits for what
+it needs: the core, a service, a topic; a node waits for a core starting beside it without
+saying so); the launch is up when each answers ``GET /health`` with 200, and their ready lines
+come in launch order. A launch with ROS 1 parameters (a roslaunch file's ``<param>``) starts its
+core first and sets them on the core's parameter server before the other nodes start. Every child runs in its own session (its own
 process group), so stopping a node kills whatever it started too, and a Ctrl-C in the terminal
 reaches only the supervisor, which then stops the nodes in reverse order: SIGTERM to the group,
 up to ``stop_timeout_s`` to exit, then SIGKILL. Children's output lines are forwarded with a
@@ -17,94 +20,47 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-import enum
 import signal
-import sys
 import time
-from collections import deque
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, TextIO
 
-from services.launch.child_process import ChildProcess, Health, describe_exit, signal_group, spawn
+from services.launch.child_process import Health, describe_exit, signal_group, spawn
 from services.launch.errors import LaunchError
-from services.launch.plan import LaunchOptions, NodePlan, default_command, plan_launch
+from services.launch.launched import (
+    BACKOFF_FIRST_S,
+    BACKOFF_MAX_S,
+    BACKOFF_RESET_AFTER_S,
+    LaunchedNode,
+    NodeState,
+    NodeStatus,
+)
+from services.launch.next_steps import next_steps
+from services.launch.output import say, write_line
+from services.launch.plan import (
+    LaunchOptions,
+    NodePlan,
+    check_ports_free,
+    default_command,
+    plan_launch,
+)
 from services.launch.plan import core_url as launch_core_url
 from services.launch.settings import LaunchSettings
 from services.launch.spec import LaunchSpec
-from services.runtime.http_client import HttpClient, HttpError
-from services.runtime.ports import port_is_free
+from services.runtime.http_client import HttpClient
 from services.runtime.rosparam import RosParamClient, RosParamError
 
 if TYPE_CHECKING:
     from services.runtime.node import Node
     from shared_models.skydeck_launch import KillNodeResponse
 
-__all__ = ["CommandFor", "NodeState", "NodeStatus", "Supervisor"]
+__all__ = ["CommandFor", "Supervisor"]
 
 CommandFor = Callable[[NodePlan], Sequence[str]]
 """Turns a node's plan into the argv that starts it (``default_command`` runs the skydeck CLI)."""
 
-# -- respawn ------------------------------------------------------------------------------------
-BACKOFF_FIRST_S = 0.5
-BACKOFF_MAX_S = 8.0
-BACKOFF_RESET_AFTER_S = 30.0
-"""A node that ran this long before dying is respawned after the first backoff again."""
 # -- stopping -----------------------------------------------------------------------------------
 STOP_TIMEOUT_S = 5.0
-# -- output -------------------------------------------------------------------------------------
-_STDERR_TAIL_LINES = 20
-
-
-class NodeState(enum.Enum):
-    """Where a node is in its life under the supervisor."""
-
-    WAITING = "waiting"  # not started yet
-    STARTING = "starting"  # running, not answering /health yet
-    READY = "ready"
-    BACKOFF = "backoff"  # died; respawning after a pause
-    EXITED = "exited"  # died and is not respawned
-    KILLED = "killed"  # stopped on request (`skydeck node kill`); not respawned
-    STOPPED = "stopped"  # stopped by the supervisor
-
-
-@dataclass(frozen=True)
-class NodeStatus:
-    """A snapshot of one node: ``ready_count`` counts how often it has become ready."""
-
-    name: str
-    url: str
-    state: NodeState
-    pid: int | None
-    ready_count: int
-    restarts: int
-    exit_code: int | None
-
-
-class _Child:
-    """The supervisor's record of one node and its current process."""
-
-    def __init__(self, plan: NodePlan) -> None:
-        self.plan = plan
-        self.state = NodeState.WAITING
-        self.process: ChildProcess | None = None
-        self.pid: int | None = None
-        self.watch: asyncio.Task[None] | None = None
-        self.started_at = 0.0
-        self.starts = 0
-        self.ready_count = 0
-        self.exit_code: int | None = None
-        self.backoff_s = BACKOFF_FIRST_S
-        self.kill_requested = False
-        self.stderr_tail: deque[str] = deque(maxlen=_STDERR_TAIL_LINES)
-
-    @property
-    def exited(self) -> asyncio.Future[int] | None:
-        return self.process.exited if self.process else None
-
-    @property
-    def running(self) -> bool:
-        return self.process is not None and self.process.running
 
 
 class Supervisor:
@@ -143,7 +99,7 @@ class Supervisor:
         self._command_for = command_for
         self._out = out
         self._stop_timeout_s = stop_timeout_s
-        self._children = {plan.name: _Child(plan) for plan in self.plans}
+        self._children = {plan.name: LaunchedNode(plan) for plan in self.plans}
         self._http: HttpClient | None = None
         self._started = False
         self._stopping = False
@@ -159,7 +115,8 @@ class Supervisor:
     # -- public ---------------------------------------------------------------------------------
 
     async def start(self) -> None:
-        """Start every node in order and wait until each is ready; respawning starts now.
+        """Start every node (the core first, if there are parameters to set on it) and wait until
+        each is ready; respawning starts now.
 
         Raises ``LaunchError`` (after stopping what did start) if a port is taken or a node
         does not become ready in time on its first start. Returns early if a stop is requested.
@@ -170,21 +127,20 @@ class Supervisor:
         try:
             try:
                 self._start_idle.clear()
-                self._check_ports_free()
+                check_ports_free(self.plans, self.options)
                 self._http = HttpClient()
                 self._announce()
-                parameters_set = False
-                for child in self._children.values():
+                children = list(self._children.values())
+                if self._parameters:  # roslaunch's <param>s: on the core's server before any node starts
+                    for child in (child for child in children if child.plan.is_core):
+                        if self._stopping:
+                            return
+                        await self._start_first(child)
                     if self._stopping:
                         return
-                    if not child.plan.is_core and not parameters_set:
-                        await self._set_parameters()
-                        parameters_set = True
-                    await self._start_first(child)
-                    if child.plan.is_core and self._control_wanted:
-                        await self._start_control()
-                if not parameters_set:
                     await self._set_parameters()
+                    children = [child for child in children if not child.plan.is_core]
+                await self._start_together(children)
             finally:
                 self._start_idle.set()
         except BaseException:
@@ -192,6 +148,9 @@ class Supervisor:
             raise
         if not self._stopping:
             self._say(f"all {len(self._children)} nodes up; Ctrl-C stops them")
+            if any(plan.is_core for plan in self.plans):
+                for line in next_steps(self.core_url):
+                    self._say(line)
 
     async def stop(self) -> None:
         """Stop every node, last started first, and their process groups; safe to call twice."""
@@ -249,16 +208,7 @@ class Supervisor:
 
     def status(self, name: str) -> NodeStatus:
         """A snapshot of node ``name``."""
-        child = self._child(name)
-        return NodeStatus(
-            name=child.plan.name,
-            url=child.plan.url,
-            state=child.state,
-            pid=child.pid if child.running else None,
-            ready_count=child.ready_count,
-            restarts=max(child.starts - 1, 0),
-            exit_code=child.exit_code,
-        )
+        return self._child(name).status()
 
     async def wait_ready(self, name: str, *, count: int = 1) -> NodeStatus:
         """Wait until node ``name`` has become ready ``count`` times in all (1: first start).
@@ -288,24 +238,6 @@ class Supervisor:
             seed = self.options.seed
             self._say(f"world seed {seed} (--seed {seed} gives the same world again)")
 
-    def _check_ports_free(self) -> None:
-        for plan in self.plans:
-            if not port_is_free(plan.port):
-                raise LaunchError(
-                    f"port {plan.port} for {plan.name} is already in use: is another launch or "
-                    "node running? stop it or choose another --base-port",
-                    node=plan.name,
-                )
-        if not any(plan.is_core for plan in self.plans):
-            return
-        for endpoint, port in self.options.core_endpoints().items():
-            if port and not port_is_free(port):
-                raise LaunchError(
-                    f"port {port} for the core's {endpoint.name} endpoint is already in use (another Skydeck "
-                    f"or {endpoint.name} server?): choose another with {endpoint.flag} PORT, or "
-                    f"{endpoint.flag} 0 to turn it off"
-                )
-
     async def _set_parameters(self) -> None:
         """Put the launch's ROS 1 parameters on the core's parameter server."""
         if not self._parameters or self._http is None:
@@ -319,10 +251,47 @@ class Supervisor:
         count = len(self._parameters)
         self._say(f"set {count} parameter{'s' if count != 1 else ''} on the core's parameter server")
 
-    async def _start_first(self, child: _Child) -> None:
-        plan = child.plan
+    async def _start_first(self, child: LaunchedNode) -> None:
         await self._spawn(child)
-        outcome = await self._wait_healthy(child)
+        await self._settle_first(child, await self._wait_healthy(child))
+
+    async def _start_together(self, children: list[LaunchedNode]) -> None:
+        """Start ``children`` at once and wait until each is ready (on two cores the launch is up
+        in about half the time one after the other takes: a node's start is mostly its imports).
+        A node started beside the core waits for it quietly while it starts. A node is ready (and
+        watched) as soon as it answers; its ready line waits for those of the nodes before it, so
+        they read in launch order. The launch's own node starts last: its imports would take CPU
+        from the nodes starting (`skydeck node kill` needs it only once they are up)."""
+        core = next((child.plan for child in children if child.plan.is_core), None)
+        beside_core = {} if core is None else {"SKYDECK_CORE_START_GRACE_S": f"{core.ready_timeout_s:g}"}
+        for child in children:
+            if self._stopping:
+                return
+            await self._spawn(child, {} if child.plan.is_core else beside_core)
+        lines: list[str | None] = [None] * len(children)
+        said = 0
+
+        async def settle(index: int, child: LaunchedNode) -> Health:
+            nonlocal said
+            outcome = await self._wait_healthy(child)
+            if outcome is Health.READY:
+                lines[index] = self._mark_ready(child)
+                child.watch = asyncio.create_task(self._watch(child), name=f"launch-watch-{child.plan.name}")
+                while said < len(lines) and (line := lines[said]) is not None:
+                    self._say(line)
+                    said += 1
+            return outcome
+
+        outcomes = await asyncio.gather(*(settle(index, child) for index, child in enumerate(children)))
+        for child, outcome in zip(children, outcomes, strict=True):  # the first failure, in launch order
+            if outcome is not Health.READY:
+                await self._settle_first(child, outcome)
+        if self._control_wanted and any(plan.is_core for plan in self.plans) and not self._stopping:
+            await self._start_control()
+
+    async def _settle_first(self, child: LaunchedNode, outcome: Health) -> None:
+        """A first start's outcome: ready (watched from now on), or a LaunchError saying why not."""
+        plan = child.plan
         if outcome is Health.READY:
             self._ready(child)
             child.watch = asyncio.create_task(self._watch(child), name=f"launch-watch-{plan.name}")
@@ -343,16 +312,22 @@ class Supervisor:
                 stderr_tail=tuple(child.stderr_tail),
             )
 
-    async def _spawn(self, child: _Child) -> None:
+    async def _spawn(self, child: LaunchedNode, extra_env: Mapping[str, str] | None = None) -> None:
         plan = child.plan
         argv = [str(part) for part in self._command_for(plan)]
-        env = {**self._settings.environment, "SKYDECK_CORE_URL": self.core_url, "PYTHONUNBUFFERED": "1", **plan.env}
+        env = {
+            **self._settings.environment,
+            "SKYDECK_CORE_URL": self.core_url,
+            "PYTHONUNBUFFERED": "1",
+            **(extra_env or {}),
+            **plan.env,
+        }
         prefix = f"[{plan.name}] "
 
         def on_line(text: str, is_stderr: bool) -> None:
             if is_stderr and text.strip():
                 child.stderr_tail.append(text)
-            self._write(prefix + text)
+            write_line(self._out, prefix + text)
 
         process = await spawn(argv, env, on_line, what=plan.name)
         child.process = process
@@ -363,7 +338,7 @@ class Supervisor:
         child.stderr_tail.clear()
         self._notify()
 
-    async def _wait_healthy(self, child: _Child) -> Health:
+    async def _wait_healthy(self, child: LaunchedNode) -> Health:
         """Poll /health until 200, the process exits, the deadline passes or a stop is asked."""
         if self._http is None or child.process is None:
             raise LaunchError("internal: node polled before it was started")
@@ -371,18 +346,21 @@ class Supervisor:
             self._http, f"{child.plan.url}/health", child.plan.ready_timeout_s, lambda: self._stopping
         )
 
-    def _ready(self, child: _Child) -> None:
+    def _ready(self, child: LaunchedNode) -> None:
+        self._say(self._mark_ready(child))
+
+    def _mark_ready(self, child: LaunchedNode) -> str:
+        """The node is ready now (waiters are told); the line that says so."""
         child.state = NodeState.READY
         child.ready_count += 1
-        pid = child.pid
         took = time.monotonic() - child.started_at
         again = f", restart {child.starts - 1}" if child.starts > 1 else ""
-        self._say(f"{child.plan.name} ready at {child.plan.url} (pid {pid}, {took:.1f} s{again})")
         self._notify()
+        return f"{child.plan.name} ready at {child.plan.url} (pid {child.pid}, {took:.1f} s{again})"
 
     # -- respawning ---------------------------------------------------------------------------
 
-    async def _watch(self, child: _Child) -> None:
+    async def _watch(self, child: LaunchedNode) -> None:
         """After a node's first start: respawn it whenever it dies, until the launch stops."""
         plan = child.plan
         while True:
@@ -415,7 +393,7 @@ class Supervisor:
             if not await self._respawn(child):
                 return
 
-    async def _respawn(self, child: _Child) -> bool:
+    async def _respawn(self, child: LaunchedNode) -> bool:
         """Restart the node after its backoff until it is ready; False if the launch stops first."""
         plan = child.plan
         while True:
@@ -449,48 +427,10 @@ class Supervisor:
 
     async def kill(self, node: str) -> KillNodeResponse:
         """Stop the child running graph node ``node`` for good (``skydeck node kill``); the
-        answer's ``reason`` says what was done or why not (``KillNodeResponse``'s constants)."""
-        # Imported here, not at the top: `services.launch` loads no message types (test_exports);
-        # the control node that calls this has loaded it already.
-        from shared_models.skydeck_launch import KillNodeResponse
+        answer's ``reason`` says what was done or why not (see :func:`~services.launch.control.kill_launched`)."""
+        from services.launch.control import kill_launched  # the node SDK: only when asked for
 
-        child, in_graph = await self._child_of_node(node)
-
-        def refuse(reason: str, message: str) -> KillNodeResponse:
-            return KillNodeResponse(success=False, reason=reason, message=message)
-
-        if child is None and not in_graph:
-            return refuse(KillNodeResponse.UNKNOWN_NODE, f"unknown node {node}: see `skydeck node list`")
-        if child is None:
-            return refuse(KillNodeResponse.NOT_LAUNCHED, f"{node} was not started by this launch: stop it where it was started")
-        if child.plan.is_core:
-            return refuse(KillNodeResponse.PROTECTED, f"{node} is the core, which `node kill` leaves: stop the whole launch with Ctrl-C")
-        if not child.running or child.pid is None:
-            return refuse(KillNodeResponse.NOT_RUNNING, f"{node} is not running ({child.state.value})")
-        pid = child.pid
-        child.kill_requested = True
-        await self._terminate(child)
-        return KillNodeResponse(
-            success=True,
-            reason=KillNodeResponse.KILLED,
-            message=f"killed {node} (launch node {child.plan.name}, pid {pid}); not respawned",
-        )
-
-    async def _child_of_node(self, node: str) -> tuple[_Child | None, bool]:
-        """The child whose process registered ``node`` (matched by pid), else one named so; and
-        whether the graph has ``node`` (if the core could be asked, else assumed; it matters
-        only when no child is found)."""
-        in_graph = True
-        if self._http is not None:
-            with contextlib.suppress(HttpError, ValueError):
-                reply = await self._http.get(f"{self.core_url}/api/nodes{node}", timeout_s=2.0)
-                in_graph = reply.status != 404
-                if reply.status == 200:
-                    pid = reply.json().get("pid")
-                    for child in self._children.values():
-                        if child.pid == pid and child.running:
-                            return child, True
-        return self._children.get(node.lstrip("/")), in_graph
+        return await kill_launched(node, self._children, http=self._http, core_url=self.core_url, terminate=self._terminate)
 
     async def _start_control(self) -> None:
         from services.launch.control import LaunchControl  # the node SDK: only when asked for
@@ -502,7 +442,7 @@ class Supervisor:
 
     # -- stopping -----------------------------------------------------------------------------
 
-    async def _terminate(self, child: _Child, *, report: bool = False) -> None:
+    async def _terminate(self, child: LaunchedNode, *, report: bool = False) -> None:
         """SIGTERM the node's process group, SIGKILL it after the stop timeout; then reap."""
         process = child.process
         if process is None:
@@ -518,7 +458,7 @@ class Supervisor:
         if was_running and report:
             self._say(f"{child.plan.name} stopped ({describe_exit(code)})")
 
-    async def _reap(self, child: _Child) -> int:
+    async def _reap(self, child: LaunchedNode) -> int:
         """The exit code of the node's finished process (see ChildProcess.reap)."""
         if child.process is None:
             raise LaunchError("internal: reaping a node that never started")
@@ -538,18 +478,11 @@ class Supervisor:
     # -- output -------------------------------------------------------------------------------
 
     def _say(self, text: str) -> None:
-        self._write(f"[launch] {text}")
-
-    def _write(self, line: str) -> None:
-        out = self._out or sys.stdout
-        # A closed or broken terminal must not stop the supervision of the nodes.
-        with contextlib.suppress(OSError, ValueError):
-            out.write(line + "\n")
-            out.flush()
+        say(self._out, text)
 
     # -- helpers ------------------------------------------------------------------------------
 
-    def _child(self, name: str) -> _Child:
+    def _child(self, name: str) -> LaunchedNode:
         try:
             return self._children[name]
         except KeyError:

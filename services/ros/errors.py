@@ -15,6 +15,9 @@ Skydeck's code; each also is the built-in class a ROS program would catch.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Collection
+from typing import Any, NoReturn
+
 from shared_models.errors import SkydeckError
 
 __all__ = [
@@ -24,6 +27,7 @@ __all__ = [
     "UnknownMessageError",
     "UnknownMessagePackageError",
     "not_provided",
+    "not_provided_attributes",
 ]
 
 DOCS = "docs/ros.md"
@@ -52,3 +56,15 @@ class NotProvidedImportError(NotProvidedError, ImportError):
 def not_provided(what: str) -> str:
     """The one line that says ``what`` is not provided."""
     return f"{what} is a ROS API Skydeck does not provide (yet); what it provides is in {DOCS}"
+
+
+def not_provided_attributes(module: str, names: Collection[str]) -> Callable[[str], Any]:
+    """A module's ``__getattr__`` (PEP 562) for the ROS names of ``module`` that the façade does
+    not have: NotProvidedError for ``names``, AttributeError for any other, as Python says it."""
+
+    def __getattr__(name: str) -> NoReturn:
+        if name in names:
+            raise NotProvidedError(not_provided(f"{module}.{name}"))
+        raise AttributeError(f"module {module!r} has no attribute {name!r}")
+
+    return __getattr__

@@ -4,6 +4,7 @@ processes that ``skydeck run`` starts.
     rclpy, rclpy.node, ...     -> services.ros.rclpy, services.ros.rclpy.node, ... (the same modules)
     rospy                      -> services.ros.rospy
     tf2_ros, tf, ...           -> services.ros.tf2_ros, services.ros.tf, ... (FACADES)
+    cv2                        -> the real OpenCV, its HighGUI windows then served by Skydeck (ADAPTED)
     geometry_msgs.msg          -> a view of shared_models.geometry_msgs: its geometry_msgs/msg/* types
     std_srvs.srv               -> its std_srvs/srv/* types, with ROS 1's TriggerRequest/TriggerResponse
                                   and ROS 2's Trigger_Request/Trigger_Response spellings
@@ -43,10 +44,11 @@ from shared_models.catalogue import MESSAGE_PACKAGES
 from shared_models.definitions.index import index
 from shared_models.definitions.loader import load_any_package
 
-__all__ = ["FACADES", "RosImportFinder", "message_view", "package_names"]
+__all__ = ["ADAPTED", "FACADES", "RosImportFinder", "message_view", "package_names"]
 
 # A ROS Python package's name -> the façade that imitates it.
 FACADES = {
+    "actionlib": "services.ros.actionlib",  # ROS 1's (its messages, actionlib.msg, are a package's)
     "rclpy": "services.ros.rclpy",
     "rospy": "services.ros.rospy",
     "cv_bridge": "services.ros.cv_bridge",
@@ -55,12 +57,13 @@ FACADES = {
     "tf2_ros": "services.ros.tf2_ros",
     "tf_transformations": "services.ros.tf_transformations",
 }
+# A real module -> the Skydeck module whose ``install(module)`` adapts it once it has loaded.
+ADAPTED = {"cv2": "services.ros.highgui"}  # OpenCV's windows in the dashboard
 _KINDS = {"msg": Message, "srv": ServiceType, "action": ActionType}
 _KIND_WORDS = {"msg": "messages", "srv": "services", "action": "actions"}
 # ROS Python packages a course meets that are not message packages and that Skydeck lacks.
 _NOT_PROVIDED = frozenset(
     {
-        "actionlib",
         "ament_index_python",
         "image_geometry",
         "image_transport",
@@ -113,6 +116,32 @@ class _AliasLoader(importlib.abc.Loader):
 
     def exec_module(self, module: types.ModuleType) -> None:
         module.__spec__ = self._own_spec
+
+
+class _AdaptingLoader(importlib.abc.Loader):
+    """Loads a real module with its own loader, then hands it to its adapter's ``install``.
+    While it loads, the finder lets that name go by (cv2's loader imports "cv2" again, its
+    compiled part, which must be OpenCV's own)."""
+
+    def __init__(self, loader: importlib.abc.Loader, adapter: str, loading: set[str]) -> None:
+        self._loader = loader
+        self._adapter = adapter
+        self._loading = loading
+
+    def create_module(self, spec: importlib.machinery.ModuleSpec) -> types.ModuleType | None:
+        return self._loader.create_module(spec)
+
+    def exec_module(self, module: types.ModuleType) -> None:
+        name = module.__name__
+        self._loading.add(name)
+        try:
+            self._loader.exec_module(module)
+        finally:
+            self._loading.discard(name)
+        importlib.import_module(self._adapter).install(sys.modules.get(name, module))
+
+    def __getattr__(self, name: str) -> Any:  # the rest of the real loader (resource readers)
+        return getattr(self._loader, name)
 
 
 class _ViewLoader(importlib.abc.Loader):
@@ -192,12 +221,17 @@ def message_view(package: str, kind: str) -> types.ModuleType:
 class RosImportFinder(importlib.abc.MetaPathFinder):
     """Maps ROS's module names (see the module docstring); installed once per process."""
 
+    def __init__(self) -> None:
+        self._adapting: set[str] = set()  # adapted modules being loaded now
+
     def find_spec(
         self, fullname: str, path: Sequence[str] | None = None, target: types.ModuleType | None = None
     ) -> importlib.machinery.ModuleSpec | None:
         top, _, rest = fullname.partition(".")
         if top in EXTRAS and not rest:
             check_extra(top)  # one line if the extra (OpenCV...) is not installed; else on as usual
+        if fullname in ADAPTED and fullname not in self._adapting:
+            return self._adapted_spec(fullname, path, target)
         if top in FACADES and not (rest.partition(".")[0] in _KINDS and _is_message_package(top)):
             return self._facade_spec(fullname, FACADES[top] + (f".{rest}" if rest else ""))
         if _is_message_package(top):  # (a façade's own messages too: actionlib.msg)
@@ -222,6 +256,15 @@ class RosImportFinder(importlib.abc.MetaPathFinder):
             fullname, _AliasLoader(target), is_package=real.submodule_search_locations is not None
         )
 
+    def _adapted_spec(
+        self, fullname: str, path: Sequence[str] | None, target: types.ModuleType | None
+    ) -> importlib.machinery.ModuleSpec | None:
+        spec = self._spec_elsewhere(fullname, path, target)
+        if spec is None or spec.loader is None:
+            return spec
+        spec.loader = _AdaptingLoader(spec.loader, ADAPTED[fullname], self._adapting)
+        return spec
+
     def _view_spec(self, package: str, kind: str) -> importlib.machinery.ModuleSpec:
         if not kind:
             return importlib.machinery.ModuleSpec(package, _ViewLoader(package, None), is_package=True)
@@ -234,9 +277,16 @@ class RosImportFinder(importlib.abc.MetaPathFinder):
     def _found_elsewhere(
         self, fullname: str, path: Sequence[str] | None, target: types.ModuleType | None
     ) -> bool:
+        return self._spec_elsewhere(fullname, path, target) is not None
+
+    def _spec_elsewhere(
+        self, fullname: str, path: Sequence[str] | None, target: types.ModuleType | None
+    ) -> importlib.machinery.ModuleSpec | None:
+        """What Python's other finders make of ``fullname``."""
         for finder in sys.meta_path:
             if finder is self or not hasattr(finder, "find_spec"):
                 continue
-            if finder.find_spec(fullname, path, target) is not None:
-                return True
-        return False
+            spec = finder.find_spec(fullname, path, target)
+            if spec is not None:
+                return spec  # type: ignore[no-any-return]
+        return None

@@ -21,6 +21,7 @@ from services.runtime.edge.topic_socket import serve_topic_socket
 from services.runtime.edge_checks import edge_checks
 from services.runtime.endpoint import TopicEndpoint
 from services.runtime.http_errors import install_error_handlers
+from services.runtime.logger import NODE_LOGGERS
 from services.runtime.service import Service
 from shared_models import Message
 
@@ -42,7 +43,7 @@ class NodeApp:
         self._token = token
         self._core_key = ""  # the core's key for calls it forwards (see accept_core_key)
         self._stall_timeout_s = stall_timeout_s
-        self._logger = logging.getLogger(f"skydeck.node.{name.lstrip('/')}")
+        self._logger = logging.getLogger(f"{NODE_LOGGERS}.{name.lstrip('/')}")
         self.fastapi = FastAPI(
             title=f"Skydeck node {name}",
             description="Topics (GET the latest, WebSocket for the stream) and services (POST) of this node.",

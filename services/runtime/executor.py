@@ -10,6 +10,7 @@ from collections.abc import Coroutine
 from typing import Any, TypeVar
 
 from services.runtime.errors import SkydeckError
+from services.runtime.logger import RosLogFormatter
 from services.runtime.node import Node
 
 __all__ = ["init", "run", "shutdown", "spin"]
@@ -30,7 +31,9 @@ def configure_logging(level: str = "INFO") -> None:
     """One line per record on stderr, unless the program configured logging itself."""
     root = logging.getLogger()
     if not root.handlers:
-        logging.basicConfig(level=level.upper(), format="[%(levelname)s] [%(name)s] %(message)s")
+        handler = logging.StreamHandler()
+        handler.setFormatter(RosLogFormatter())
+        logging.basicConfig(level=level.upper(), handlers=[handler])
 
 
 def run(main: Coroutine[Any, Any, T]) -> T:

@@ -1,12 +1,15 @@
 """The HTTP client Skydeck processes use among themselves: keep-alive HTTP/1.1 over asyncio.
 
-Service calls between nodes, the core's gateway and the launch supervisor's health checks all
-talk plain ``http://`` to other Skydeck processes, on loopback or a container network. httpx did
-this job first; profiling the gateway showed its layers (auth, redirects, cookies, anyio, a
-failed ``import sniffio`` per request) took 60% of the core's CPU per forwarded call. This client
-does only what those calls need: one pooled connection per request in flight, requests written
-in one piece, responses parsed by httptools (llhttp, the parser uvicorn already uses).
-No proxies from the environment either: a loopback call must never go through ``HTTP_PROXY``.
+Service calls between nodes, the core's gateway and the launch supervisor's health checks talk
+plain ``http://`` to other Skydeck processes, on loopback or a container network; the CLI talks
+to a core that may be anywhere (``https://`` behind a TLS proxy: docs/security.md), one request
+at a time (:func:`request_once`). httpx did this job first; profiling the gateway showed its
+layers (auth, redirects, cookies, anyio, a failed ``import sniffio`` per request) took 60% of the
+core's CPU per forwarded call, and its import a quarter of a CLI command's start-up
+(docs/architecture.md has the figures). This client does only what those calls need: one pooled
+connection per request in flight, requests written in one piece, responses parsed by httptools
+(llhttp, the parser uvicorn already uses). No proxies from the environment either: a call to a
+node or a core on the robot's network must never go through ``HTTP_PROXY``.
 
     client = HttpClient()
     reply = await client.request("POST", "http://127.0.0.1:8003/control/take_off", b"{}", timeout_s=5)
@@ -20,182 +23,77 @@ quarter of its time per call went to those turns and the coroutines around them)
 and a future.
 
 Errors: :class:`HttpTimeout` (no complete reply in time) and :class:`HttpUnreachable` (no
-connection, or it broke), both :class:`HttpError`. A reply of any status is a reply.
+connection, or it broke), both :class:`HttpError`. A reply of any status is a reply. One
+connection and what it yields (replies, errors) are :mod:`services.runtime.http_connection`'s.
 """
 
 from __future__ import annotations
 
 import asyncio
-import json
+import concurrent.futures
 import logging
+import ssl
 import time
 from collections.abc import Callable, Coroutine, Mapping
-from dataclasses import dataclass
-from typing import Any
+from typing import Any, NamedTuple, Protocol, TypeVar
 from urllib.parse import urlsplit
 
-import httptools
+from services.runtime.http_connection import (
+    MAX_REPLY_BYTES,
+    Connection,
+    HttpError,
+    HttpReply,
+    HttpTimeout,
+    HttpUnreachable,
+    Outcome,
+)
 
-from shared_models.errors import SkydeckError
+__all__ = [
+    "MAX_REPLY_BYTES", "Cancellable", "HttpClient", "HttpError", "HttpReply", "HttpTimeout", "HttpUnreachable",
+    "Outcome", "outcome_of", "request_once",
+]  # fmt: skip
 
-__all__ = ["HttpClient", "HttpError", "HttpReply", "HttpTimeout", "HttpUnreachable", "Outcome"]
-
-# uvicorn closes a keep-alive connection after 5 idle seconds; reusing one older than this
-# would race that close.
-_MAX_IDLE_S = 4.0
 _MAX_IDLE_PER_ORIGIN = 8
-MAX_REPLY_BYTES = 64 * 1024 * 1024
 _MAX_KNOWN_URLS = 1024
 
 logger = logging.getLogger("skydeck.runtime")
 
 
-class HttpError(SkydeckError):
-    """A request that got no reply."""
+class _Origin(NamedTuple):
+    """Where a request goes: connections are pooled per origin."""
+
+    host: str
+    port: int
+    tls: bool  # https://
+
+T = TypeVar("T")
 
 
-class HttpTimeout(HttpError):
-    """No complete reply within the timeout."""
+class Cancellable(Protocol):
+    """An operation under way that its caller may give up (an exchange, a task)."""
+
+    def cancel(self) -> object: ...
 
 
-class HttpUnreachable(HttpError):
-    """The server could not be reached, or the connection broke before the reply."""
+async def outcome_of(start: Callable[[Callable[[T], None]], Cancellable | None]) -> T:
+    """The outcome a callback-form operation hands its callback, awaited.
 
+    ``start(on_done)`` begins the operation; ``on_done`` may be called at once or later, and only
+    the first outcome counts. Cancelled while waiting, the operation is cancelled too.
+    """
+    future: asyncio.Future[T] = asyncio.get_running_loop().create_future()
 
-@dataclass(frozen=True, slots=True)
-class HttpReply:
-    status: int
-    headers: dict[str, str]  # lower-case names
-    body: bytes
+    def done(outcome: T) -> None:
+        if not future.done():
+            future.set_result(outcome)
 
-    @property
-    def text(self) -> str:
-        return self.body.decode("utf-8", errors="replace")
-
-    def json(self) -> Any:
-        return json.loads(self.body)
-
-
-Outcome = HttpReply | HttpError
-"""What a request came to: the reply (of any status), or why none came."""
-
-
-class _Connection(asyncio.Protocol):
-    """One keep-alive connection; parses one reply at a time and hands it on from its I/O callback."""
-
-    def __init__(self, loop: asyncio.AbstractEventLoop) -> None:
-        # The loop it was made on, kept: on Python 3.11 every asyncio.get_running_loop() is a
-        # getpid() system call, six of them per forwarded call before this.
-        self._loop = loop
-        # One timer per connection, not one per request: it looks at the request waiting when it
-        # fires and times it out, or waits on for its deadline.
-        self._timer: asyncio.TimerHandle | None = None
-        self._deadline = 0.0
-        self.transport: asyncio.Transport | None = None
-        self.idle_since = 0.0
-        self.received_any = False
-        self._parser = httptools.HttpResponseParser(self)
-        self._headers: dict[str, str] = {}
-        self._body: list[bytes] = []
-        self._size = 0
-        self._on_done: Callable[[Outcome], None] | None = None  # while a request awaits its reply
-        self._closed = False
-
-    # -- asyncio.Protocol -------------------------------------------------------------------
-
-    def connection_made(self, transport: asyncio.BaseTransport) -> None:
-        self.transport = transport  # type: ignore[assignment]
-
-    def data_received(self, data: bytes) -> None:
-        self.received_any = True
-        if self._on_done is None:  # bytes nobody asked for: the connection cannot be trusted
-            self.close()
-            return
-        try:
-            self._parser.feed_data(data)
-        except httptools.HttpParserError as error:
-            self._fail(HttpUnreachable(f"malformed reply: {error}"))
-
-    def connection_lost(self, exc: Exception | None) -> None:
-        self._closed = True
-        self._fail(HttpUnreachable("the server closed the connection before replying"))
-
-    # -- httptools callbacks -----------------------------------------------------------------
-
-    def on_header(self, name: bytes, value: bytes) -> None:
-        self._headers[name.decode("latin-1").lower()] = value.decode("latin-1")
-
-    def on_body(self, body: bytes) -> None:
-        self._size += len(body)
-        if self._size > MAX_REPLY_BYTES:
-            self._fail(HttpUnreachable(f"reply larger than {MAX_REPLY_BYTES} bytes"))
-            return
-        self._body.append(body)
-
-    def on_message_complete(self) -> None:
-        reply = HttpReply(self._parser.get_status_code(), self._headers, b"".join(self._body))
-        self.idle_since = time.monotonic()
-        if not self._parser.should_keep_alive():
-            self.close()
-        self._finish(reply)
-
-    # -- use ---------------------------------------------------------------------------------
-
-    @property
-    def usable(self) -> bool:
-        return (
-            not self._closed
-            and self.transport is not None
-            and not self.transport.is_closing()
-            and time.monotonic() - self.idle_since < _MAX_IDLE_S
-        )
-
-    def send(self, request: bytes, timeout_s: float, on_done: Callable[[Outcome], None]) -> None:
-        """Write ``request``; ``on_done`` gets its reply, or :class:`HttpTimeout` if no whole reply
-        comes within ``timeout_s``, or :class:`HttpUnreachable`."""
-        assert self.transport is not None  # the parser goes on from the last reply (keep-alive)
-        self._headers = {}
-        self._body = []
-        self._size = 0
-        self.received_any = False
-        self._on_done = on_done
-        self._deadline = self._loop.time() + max(timeout_s, 0.0)
-        if self._timer is None or self._timer.when() > self._deadline:
-            self._arm_timer()
-        self.transport.write(request)
-
-    def close(self) -> None:
-        self._closed = True
-        self._stop_timer()
-        if self.transport is not None:
-            self.transport.close()
-
-    def _arm_timer(self) -> None:
-        self._stop_timer()
-        self._timer = self._loop.call_at(self._deadline, self._time_out)
-
-    def _time_out(self) -> None:
-        self._timer = None
-        if self._on_done is None:
-            return  # no request waits: the next one arms the timer again
-        if self._loop.time() < self._deadline:
-            self._arm_timer()  # a later request's: wait on
-            return
-        self._fail(HttpTimeout())
-
-    def _stop_timer(self) -> None:
-        if self._timer is not None:
-            self._timer.cancel()
-            self._timer = None
-
-    def _fail(self, error: HttpError) -> None:
-        self.close()
-        self._finish(error)
-
-    def _finish(self, outcome: Outcome) -> None:
-        on_done, self._on_done = self._on_done, None
-        if on_done is not None:
-            on_done(outcome)  # an _Exchange's, which guards its caller's callback
+    operation = start(done)
+    try:
+        return await future
+    except BaseException:  # cancelled while the operation was out
+        if operation is not None:
+            operation.cancel()
+        raise
 
 
 class _Exchange:
@@ -210,7 +108,7 @@ class _Exchange:
     def __init__(
         self,
         client: HttpClient,
-        origin: tuple[str, int],
+        origin: _Origin,
         request: bytes,
         url: str,
         timeout_s: float,
@@ -223,7 +121,7 @@ class _Exchange:
         self._timeout_s = timeout_s
         self._deadline = time.monotonic() + timeout_s
         self._on_done = on_done
-        self._connection: _Connection | None = None
+        self._connection: Connection | None = None
         self._reused = False
         self._connecting: asyncio.Task[None] | None = None
 
@@ -234,8 +132,8 @@ class _Exchange:
         else:
             self._send_on(connection, reused=True)
 
-    def abort(self) -> None:
-        """The caller gave up (cancelled): a reply that still comes has nowhere to go."""
+    def cancel(self) -> None:
+        """The caller gave up: a reply that still comes has nowhere to go."""
         self._on_done = _ignore
         if self._connecting is not None:
             self._connecting.cancel()
@@ -244,27 +142,28 @@ class _Exchange:
 
     async def _connect(self) -> None:
         loop = asyncio.get_running_loop()
+        origin = self._origin
         try:
             async with asyncio.timeout(self._deadline - time.monotonic()):
-                _, connection = await loop.create_connection(lambda: _Connection(loop), *self._origin)
+                _, connection = await loop.create_connection(
+                    lambda: Connection(loop), origin.host, origin.port, **self._client._tls_options(origin)
+                )
         except TimeoutError:
             self._deliver(self._timed_out())
             return
-        except OSError as error:
-            where = f"{self._origin[0]}:{self._origin[1]}"
+        except OSError as error:  # ssl.SSLError (a certificate refused) is one
+            where = f"{origin.host}:{origin.port}"
             self._deliver(HttpUnreachable(f"cannot connect to {where}: {error.strerror or error}"))
             return
         self._connecting = None
         self._send_on(connection, reused=False)
 
-    def _send_on(self, connection: _Connection, *, reused: bool) -> None:
+    def _send_on(self, connection: Connection, *, reused: bool) -> None:
         self._connection = connection
         self._reused = reused
         connection.send(self._request, self._deadline - time.monotonic(), self._done)
 
-    def _done(self, outcome: Outcome) -> None:
-        connection = self._connection
-        assert connection is not None
+    def _done(self, connection: Connection, outcome: Outcome) -> None:
         self._connection = None
         if isinstance(outcome, HttpReply):
             self._client._keep(self._origin, connection)
@@ -290,12 +189,14 @@ def _ignore(outcome: Outcome) -> None:
 
 
 class HttpClient:
-    """Pooled keep-alive HTTP/1.1 to ``http://`` URLs; ``headers`` go with every request."""
+    """Pooled keep-alive HTTP/1.1 to ``http://`` and ``https://`` URLs; ``headers`` go with every
+    request, ``tls`` checks the servers' certificates (default: the system's, as ``ssl`` does)."""
 
-    def __init__(self, headers: Mapping[str, str] | None = None) -> None:
+    def __init__(self, headers: Mapping[str, str] | None = None, *, tls: ssl.SSLContext | None = None) -> None:
+        self._tls = tls  # https://'s, made on first use: the system's certificates (ssl's default)
         self._default_headers = "".join(f"{name}: {value}\r\n" for name, value in (headers or {}).items())
-        self._idle: dict[tuple[str, int], list[_Connection]] = {}
-        self._request_lines: dict[tuple[str, str], tuple[tuple[str, int], str]] = {}
+        self._idle: dict[_Origin, list[Connection]] = {}
+        self._request_lines: dict[tuple[str, str], tuple[_Origin, str]] = {}
         self._closed = False
         self._tasks: set[asyncio.Task[None]] = set()  # connecting: held here, the loop holds tasks weakly
 
@@ -317,21 +218,12 @@ class HttpClient:
         headers: Mapping[str, str] | None = None,
     ) -> HttpReply:
         """Send one request and return the whole reply (any status)."""
-        outcome: asyncio.Future[Outcome] = asyncio.get_running_loop().create_future()
-
-        def done(result: Outcome) -> None:
-            if not outcome.done():
-                outcome.set_result(result)
-
-        exchange = self.start(method, url, body, timeout_s=timeout_s, headers=headers, on_done=done)
-        try:
-            result = await outcome
-        except BaseException:  # cancelled while the request was out
-            exchange.abort()
-            raise
-        if isinstance(result, HttpError):
-            raise result
-        return result
+        outcome: Outcome = await outcome_of(
+            lambda on_done: self.start(method, url, body, timeout_s=timeout_s, headers=headers, on_done=on_done)
+        )
+        if isinstance(outcome, HttpError):
+            raise outcome
+        return outcome
 
     def start(
         self,
@@ -365,20 +257,27 @@ class HttpClient:
         exchange.start()
         return exchange
 
-    def _request_line(self, method: str, url: str) -> tuple[tuple[str, int], str]:
+    def _request_line(self, method: str, url: str) -> tuple[_Origin, str]:
         """Where ``url`` is, and the request's first lines up to its own headers (kept per URL:
         parsing a URL is a tenth of a forwarded call's work, and the core calls few URLs)."""
         known = self._request_lines.get((method, url))
         if known is None:
             origin, target = _split(url)
-            host = f"[{origin[0]}]" if ":" in origin[0] else origin[0]
-            known = origin, f"{method} {target} HTTP/1.1\r\nHost: {host}:{origin[1]}\r\n{self._default_headers}"
+            host = f"[{origin.host}]" if ":" in origin.host else origin.host
+            known = origin, f"{method} {target} HTTP/1.1\r\nHost: {host}:{origin.port}\r\n{self._default_headers}"
             if len(self._request_lines) >= _MAX_KNOWN_URLS:
                 self._request_lines.clear()
             self._request_lines[(method, url)] = known
         return known
 
-    def _pooled(self, origin: tuple[str, int]) -> _Connection | None:
+    def _tls_options(self, origin: _Origin) -> dict[str, Any]:
+        if not origin.tls:
+            return {}
+        if self._tls is None:
+            self._tls = ssl.create_default_context()
+        return {"ssl": self._tls, "server_hostname": origin.host}
+
+    def _pooled(self, origin: _Origin) -> Connection | None:
         pool = self._idle.get(origin)
         while pool:
             connection = pool.pop()
@@ -393,7 +292,7 @@ class HttpClient:
         task.add_done_callback(self._tasks.discard)
         return task
 
-    def _keep(self, origin: tuple[str, int], connection: _Connection) -> None:
+    def _keep(self, origin: _Origin, connection: Connection) -> None:
         if self._closed or not connection.usable:
             connection.close()
             return
@@ -411,11 +310,35 @@ class HttpClient:
         self._idle.clear()
 
 
-def _split(url: str) -> tuple[tuple[str, int], str]:
+def request_once(
+    method: str, url: str, body: bytes | str = b"", *, timeout_s: float, headers: Mapping[str, str] | None = None
+) -> HttpReply:
+    """One request from blocking code (a CLI command, a launch before its loop, a harness polling
+    a process): on a loop and a connection of its own. Raises as ``request``."""
+
+    async def once() -> HttpReply:
+        client = HttpClient()
+        try:
+            return await client.request(method, url, body, timeout_s=timeout_s, headers=headers)
+        finally:
+            await client.aclose()
+
+    try:
+        asyncio.get_running_loop()
+    except RuntimeError:
+        return asyncio.run(once())
+    # Blocking code called from a coroutine (a test's harness): the loop of this thread is busy
+    # until the call returns, as with any blocking call, so the request runs in a thread of its own.
+    with concurrent.futures.ThreadPoolExecutor(1, thread_name_prefix="request_once") as pool:
+        return pool.submit(asyncio.run, once()).result()
+
+
+def _split(url: str) -> tuple[_Origin, str]:
     parts = urlsplit(url)
-    if parts.scheme != "http" or not parts.hostname:
-        raise HttpUnreachable(f"{url}: only http:// URLs are reached by Skydeck's internal client")
+    if parts.scheme not in ("http", "https") or not parts.hostname:
+        raise HttpUnreachable(f"{url}: Skydeck's HTTP client reaches http:// and https:// URLs only")
     target = parts.path or "/"
     if parts.query:
         target += "?" + parts.query
-    return (parts.hostname, parts.port or 80), target
+    tls = parts.scheme == "https"
+    return _Origin(parts.hostname, parts.port or (443 if tls else 80), tls), target

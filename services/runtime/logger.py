@@ -10,7 +10,10 @@ from typing import Any
 from shared_models.builtin_interfaces import Time
 from shared_models.rcl_interfaces import Log
 
-__all__ = ["NodeLogger"]
+__all__ = ["NODE_LOGGERS", "NodeLogger", "RosLogFormatter", "ros_logger_name"]
+
+NODE_LOGGERS = "skydeck.node"
+"""The parent of every node's Python logger (``skydeck.node.talker``), one logger tree for all."""
 
 _LEVELS = {
     Log.DEBUG: logging.DEBUG,
@@ -19,6 +22,28 @@ _LEVELS = {
     Log.ERROR: logging.ERROR,
     Log.FATAL: logging.CRITICAL,
 }
+
+
+def ros_logger_name(python_name: str) -> str:
+    """The name ROS prints for a Python logger: a node's is its node's logger name, as rclpy's
+    (``skydeck.node.talker`` -> ``talker``; in a namespace, ``robot1.wall_follower``); any other
+    logger keeps its own (``uvicorn.error``)."""
+    prefix = NODE_LOGGERS + "."
+    if not python_name.startswith(prefix):
+        return python_name
+    return python_name.removeprefix(prefix).replace("/", ".")
+
+
+class RosLogFormatter(logging.Formatter):
+    """``[INFO] [talker]: message``: ROS 2's console line (without its time), named as ROS names
+    the logger."""
+
+    def __init__(self) -> None:
+        super().__init__("[%(levelname)s] [%(ros_name)s]: %(message)s")
+
+    def formatMessage(self, record: logging.LogRecord) -> str:
+        record.ros_name = ros_logger_name(record.name)
+        return super().formatMessage(record)
 
 
 class NodeLogger:
@@ -36,7 +61,7 @@ class NodeLogger:
         self._min_python_level = logging.getLevelName(level.upper())
         if not isinstance(self._min_python_level, int):
             raise ValueError(f"unknown log level {level!r}: use debug, info, warning or error")
-        self._logger = logging.getLogger(f"skydeck.node.{node_name.lstrip('/')}")
+        self._logger = logging.getLogger(f"{NODE_LOGGERS}.{node_name.lstrip('/')}")
         self._stamp = stamp
         self._publish = publish
 

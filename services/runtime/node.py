@@ -288,6 +288,11 @@ class Node(ParametersMixin):
             self._spawn(timer.run(self._logger.logger))
         return timer
 
+    def is_linked(self, topic: str) -> bool:
+        """Whether this node receives ``topic`` (resolved as its subscriptions are) from at least
+        one publisher now."""
+        return self._participant.is_linked(self._names.resolve(topic))
+
     def destroy_node(self) -> None:
         """Stop the node; creating entities afterwards raises NodeError."""
         self._destroyed = True
@@ -354,6 +359,7 @@ class Node(ParametersMixin):
             on_publishers=self._participant.set_publishers,
             on_key=self._app.accept_core_key,
             token=self.settings.token,
+            quiet_s=self.settings.core_start_grace_s,
         )
         self._spawn(self._session.run())
         for subscription in self._subscriptions:

@@ -163,6 +163,14 @@ class Participant:
                 )
                 self.links[(topic, url)] = (link, self._spawn(link.run()))
 
+    def is_linked(self, topic: str) -> bool:
+        """Whether ``topic`` reaches this participant from at least one publisher now (a link is
+        connected, or it publishes it itself): what an action client waits for before sending a goal."""
+        endpoint = self.endpoints.get(topic)
+        if endpoint is not None and endpoint.publishing:
+            return True  # its own publications reach its own subscriptions in-process
+        return any(key[0] == topic and link.connected.is_set() for key, (link, _) in self.links.items())
+
     def stop_links(self) -> None:
         """Cancel every link (the participant stops)."""
         for _, task in self.links.values():

@@ -9,6 +9,7 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import logging
+import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
@@ -66,8 +67,10 @@ class CoreSession:
         on_publishers: Callable[[str, list[PublisherAddress]], None],
         on_key: Callable[[str], None] | None = None,
         token: str = "",
+        quiet_s: float = 0.0,
     ) -> None:
         self.core_url = core_url.rstrip("/")
+        self._quiet_s = quiet_s  # a core starting beside this node: wait that long unsaid
         self._describe = describe
         self._stats = stats
         self._on_publishers = on_publishers
@@ -85,6 +88,7 @@ class CoreSession:
         said_waiting = False
         registrations = 0
         retry_s = _RETRY_FIRST_S
+        quiet_until = time.monotonic() + self._quiet_s
         url = stream_url(self.core_url, "/api/session")
         while True:
             try:
@@ -116,6 +120,9 @@ class CoreSession:
                     logger.warning("the core at %s refused %s: %s; retrying", self.core_url, self._describe().name, reason)
                     said_waiting = True
             self.registered.clear()
+            if not registrations and time.monotonic() < quiet_until:
+                await asyncio.sleep(_RETRY_FIRST_S)  # the core is starting: ask again soon, unsaid
+                continue
             if not said_waiting:
                 if registrations:
                     logger.warning(

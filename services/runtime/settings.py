@@ -112,6 +112,9 @@ class NodeSettings(ProcessSettings):
     core_url: str = DEFAULT_CORE_URL
     use_sim_time: bool = False
     service_timeout_s: float = Field(default=10.0, gt=0)
+    # How long the node waits for the core quietly before saying it waits: a launch that starts
+    # a node beside its core (both starting) sets it; 0 says so at the first refused connection.
+    core_start_grace_s: float = Field(default=0.0, ge=0)
     # ROS 1's variable for the namespace a rospy program's node starts in (`ROS_NAMESPACE=/robot1`).
     ros_namespace: str = Field(default="", validation_alias="ROS_NAMESPACE")
 

@@ -17,6 +17,7 @@ Frames carry the namespace as a prefix with several robots (``robot1/odom``).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from functools import partial
 from typing import Any
 
@@ -112,8 +113,13 @@ class RobotSimNode(WorldNode[RobotSettings]):
     PUBLISH_EVERY_STEPS = ODOM_EVERY_STEPS  # 30 Hz: odom, bump, tf and clock
     WORLD_NAME = "robot"
 
-    def __init__(self, sim: RobotSettings | None = None, settings: NodeSettings | None = None) -> None:
-        super().__init__(sim or RobotSettings(), settings, _build_world)
+    def __init__(
+        self,
+        sim: RobotSettings | None = None,
+        settings: NodeSettings | None = None,
+        build: Callable[[RobotSettings], RobotWorld] = _build_world,
+    ) -> None:
+        super().__init__(sim or RobotSettings(), settings, build)
         self.world: RobotWorld
         world = self.world
         self.namespaces = robot_namespaces(world.robot_count)
@@ -186,7 +192,11 @@ class RobotSimNode(WorldNode[RobotSettings]):
 
     def _publish_build(self) -> None:
         """The transforms that never move, and the room's walls and boxes (once per build)."""
-        stamp = self.header().stamp
+        self.tf_static_publisher.publish(TFMessage(transforms=self._static_transforms(self.header().stamp)))
+        self.obstacles_publisher.publish(MarkerArray(markers=self._room_markers()))
+
+    def _static_transforms(self, stamp: Time) -> list[TransformStamped]:
+        """Each robot's map -> odom and base_link -> base_laser_link (a world with more sensors adds theirs)."""
         transforms = []
         for robot in self.robots:
             sx, sy, syaw = self.world.robot_start(robot.index)
@@ -204,8 +214,7 @@ class RobotSimNode(WorldNode[RobotSettings]):
                     transform=Transform(translation=Vector3(z=LASER_HEIGHT_M), rotation=_yaw_quaternion(0.0)),
                 )
             )
-        self.tf_static_publisher.publish(TFMessage(transforms=transforms))
-        self.obstacles_publisher.publish(MarkerArray(markers=self._room_markers()))
+        return transforms
 
     def _room_markers(self) -> list[Marker]:
         header = self.header()

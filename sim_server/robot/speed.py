@@ -2,7 +2,7 @@
 scene casting the same rays.
 
 Run ``python -m sim_server.robot.speed`` for a one-off reading; the benchmark suite calls
-:func:`measure` (in ``services.bench.robot_worker``). Timings live here and in the benchmark,
+:func:`measure` (in ``benchmarks.robot_worker``). Timings live here and in the benchmark,
 never in pass/fail tests.
 """
 

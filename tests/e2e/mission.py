@@ -14,7 +14,7 @@ from pathlib import Path
 
 from websockets.asyncio.client import connect
 
-from services.bench.mission import GroundTrack
+from benchmarks.mission import GroundTrack
 from services.launch.background import BackgroundProcess
 from services.runtime.edge.links import stream_url
 from tests.e2e import conftest

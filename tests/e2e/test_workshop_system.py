@@ -8,8 +8,8 @@ import math
 
 import pytest
 
+from benchmarks.mission import optimal_flight_m
 from services.ai.landing import BOX_FOOTPRINT_RADIUS_M, DRONE_RADIUS_M
-from services.bench.mission import optimal_flight_m
 from sim_server.drone.limits import START_XY_M
 from tests.e2e.mission import ai_process, box_positions, recording
 

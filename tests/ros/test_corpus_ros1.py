@@ -14,7 +14,7 @@ import sys
 import httpx
 import pytest
 
-from services.bench.mission import GroundTrack
+from benchmarks.mission import GroundTrack
 from services.launch.background import BackgroundProcess
 from tests.e2e.conftest import LaunchedSystem
 from tests.e2e.mission import box_positions, recording

@@ -103,7 +103,7 @@ def test_unknown_type_in_a_known_package() -> None:
 @pytest.mark.parametrize(
     ("module", "message"),
     [
-        ("rclpy.action", "`rclpy.action` is a ROS API Skydeck does not provide (yet)"),
+        ("rclpy.lifecycle", "`rclpy.lifecycle` is a ROS API Skydeck does not provide (yet)"),
         ("message_filters", "`message_filters` is a ROS API Skydeck does not provide"),
     ],
 )
@@ -164,7 +164,7 @@ def _skydeck_run(tmp_path: Path, source: str) -> subprocess.CompletedProcess[str
     ("source", "line"),
     [
         ("import foo_msgs.msg\n", "skydeck: error: `foo_msgs` is not a message package Skydeck knows; known: "),
-        ("from rclpy.action import ActionServer\n", "skydeck: error: `rclpy.action` is a ROS API Skydeck does not provide"),
+        ("from rclpy.lifecycle import LifecycleNode\n", "skydeck: error: `rclpy.lifecycle` is a ROS API Skydeck does not provide"),
         ("def main():\n    from std_msgs.msg import Strin\n\nif __name__ == '__main__':\n    main()\n",
          "skydeck: error: `std_msgs.msg` has no type 'Strin' in Skydeck"),
     ],

@@ -238,7 +238,7 @@ def test_apis_not_provided_name_themselves(rclpy) -> None:  # type: ignore[no-un
     node = rclpy.create_node("asks_too_much")
     with pytest.raises(NotProvidedError, match="Node.create_guard_condition is a ROS API Skydeck does not provide"):
         node.create_guard_condition(lambda: None)
-    with pytest.raises(NotProvidedError, match="rclpy.action is a ROS API"):
-        _ = rclpy.action
+    with pytest.raises(NotProvidedError, match="rclpy.lifecycle is a ROS API"):
+        _ = rclpy.lifecycle
     with pytest.raises(AttributeError, match="has no attribute 'not_a_thing'"):
         _ = node.not_a_thing

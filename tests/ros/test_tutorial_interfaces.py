@@ -8,7 +8,7 @@ import importlib
 import pytest
 
 from services.ros import disable_ros_imports, enable_ros_imports
-from services.ros.errors import NotProvidedImportError
+from services.ros.errors import NotProvidedError
 from shared_models import ActionType, Message, ServiceType
 
 pytestmark = pytest.mark.usefixtures("ros_imports")
@@ -78,14 +78,19 @@ def test_actionlib_tutorials_as_ros1_imports_them() -> None:
     assert fields(GoalStatus) == ["goal_id", "status", "text"] and fields(GoalStatusArray) == ["header", "status_list"]
 
 
-def test_actionlib_test_actions_and_its_api_not_provided_yet() -> None:
+def test_actionlib_test_actions_beside_its_api() -> None:
+    import actionlib
     from actionlib.msg import TestAction, TestGoal, TestRequestGoal, TwoIntsGoal, TwoIntsResult
 
     assert fields(TestGoal) == ["goal"] and TestAction().action_goal.goal.goal == 0
     assert TestRequestGoal.TERMINATE_EXCEPTION == 5 and TestRequestGoal().delay_accept.to_sec() == 0.0
     assert TwoIntsResult(sum=TwoIntsGoal(a=1, b=2).b + 1).sum == 3
-    with pytest.raises(NotProvidedImportError, match=r"`actionlib.SimpleActionServer` is a ROS API Skydeck does not provide"):
-        exec("from actionlib import SimpleActionServer", {})
+    from actionlib import SimpleActionClient, SimpleActionServer
+
+    assert SimpleActionServer.__module__ == "services.ros.actionlib.simple_action_server" and SimpleActionClient
+    assert actionlib.GoalStatus.SUCCEEDED == 3 and actionlib.get_name_of_constant(actionlib.GoalStatus, 2) == "PREEMPTED"
+    with pytest.raises(NotProvidedError, match=r"`actionlib.ActionClient` \(use SimpleActionClient\) is a ROS API Skydeck does not provide"):
+        exec("from actionlib import ActionClient", {})
 
 
 def test_ros2_action_types_under_rclpy_names() -> None:

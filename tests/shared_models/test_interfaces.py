@@ -68,6 +68,7 @@ def test_interface_names() -> None:
         "rcl_interfaces/srv/SetParametersAtomically",
         "ros_workshop/srv/FlyCommand",
         "skydeck_launch/srv/KillNode",
+        "skydeck_opencv/srv/WindowInput",
         "std_srvs/srv/Empty",
         "std_srvs/srv/SetBool",
         "std_srvs/srv/Trigger",

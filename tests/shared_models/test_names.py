@@ -21,6 +21,8 @@ from shared_models.names import check_not_reserved
         ("/apiary", "/", "/apiary"),
         ("/static_map", "/", "/static_map"),
         ("/drone/api", "/", "/drone/api"),
+        ("/fibonacci/_action/send_goal", "/", "/fibonacci/_action/send_goal"),  # ROS 2's hidden names
+        ("_action/status", "/fibonacci", "/fibonacci/_action/status"),
     ],
 )
 def test_valid_names(name: str, namespace: str, expected: str) -> None:
@@ -40,9 +42,9 @@ def test_valid_names(name: str, namespace: str, expected: str) -> None:
         ("//drone", "invalid name '//drone': empty token at position 1"),
         (
             "/1drone",
-            "invalid name '/1drone': token '1drone' at position 1 must start with a letter",
+            "invalid name '/1drone': token '1drone' at position 1 must start with a letter or '_'",
         ),
-        ("/drone/_pose", "token '_pose' at position 7 must start with a letter"),
+        ("/drone/9pose", "token '9pose' at position 7 must start with a letter"),
         ("~/private", "'~' at position 0 is not allowed"),
         ("/drone.pose", "'.' at position 6 is not allowed"),
         ("/drone/pösé", "'ö' at position 8 is not allowed"),

@@ -14,7 +14,9 @@ import pytest
 pytestmark = pytest.mark.timeout(60)
 
 PACKAGE = Path(__file__).resolve().parents[2] / "sim_server"
-WORLD_PACKAGES = ("sim_server.drone", "sim_server.robot")
+WORLD_PACKAGES = ("sim_server.drone", "sim_server.robot", "sim_server.soccer")
+# A world built on another imports that world's package too; its description says which.
+EXTENDS = {"sim_server.soccer": "sim_server.robot"}
 ROOF = ("sim_server.worlds", "sim_server.node")  # the table and the entry: above every world
 
 
@@ -61,9 +63,16 @@ def test_the_floor_imports_no_world_and_a_world_only_the_floor() -> None:
             where = _package_of(imported)
             if home == "floor" and where != "floor":
                 wrong.append(f"floor {module} imports {imported}")
-            elif home in WORLD_PACKAGES and where not in ("floor", home):
+            elif home in WORLD_PACKAGES and where not in ("floor", home, EXTENDS.get(home)):
                 wrong.append(f"world {module} imports {imported}")
     assert wrong == []
+
+
+def test_a_world_built_on_another_says_so() -> None:
+    from sim_server.worlds import WORLDS
+
+    said = {f"sim_server.{name}": f"sim_server.{entry.describe().extends}" for name, entry in WORLDS.items() if entry.describe().extends}
+    assert said == EXTENDS
 
 
 def test_no_import_cycle() -> None:
@@ -104,6 +113,9 @@ def test_no_module_over_500_lines() -> None:
         "sim_server.robot.limits",
         "sim_server.robot.settings",
         "sim_server.robot.description",
+        "sim_server.soccer.limits",
+        "sim_server.soccer.settings",
+        "sim_server.soccer.description",
     ],
 )
 def test_the_table_the_entry_and_what_clients_read_load_no_physics(module: str) -> None:

@@ -581,7 +581,7 @@ def test_screenshot_of_the_drone_world_in_3d(
         page.wait_for_function("window.skydeck.view3d().world.drone.drone[2] > 2")
         wait_display(page, "/simulator/camera", "d.frames > 1")
         # Flying to box 0: the drone tilts; the view follows it.
-        follow_and_zoom(page, 6, "v.world.drone.drone")
+        follow_and_zoom(page, -7, "v.world.drone.drone")
         screenshot = screenshot_path("view3d_drone.png", tmp_path)
         page.locator("#map-panel").screenshot(path=str(screenshot))
     finally:

@@ -20,6 +20,15 @@ from websockets.sync.client import connect
 
 from shared_models.geometry_msgs import Twist, Vector3
 from tests.conftest import free_port_block
+from tests.web_ui.camera_projection import (
+    FOLLOWED_MODEL_PX,
+    MIN_FILLED,
+    MIN_MODEL_PX,
+    MIN_SPAN,
+    Camera,
+    measure_world,
+    report,
+)
 from tests.web_ui.conftest import open_dashboard
 from tests.web_ui.system import System
 from tests.web_ui.threaded_node import ThreadedNode
@@ -162,8 +171,44 @@ def test_screenshot_of_the_robot_world_in_3d(dashboard, system: System, tmp_path
         wait_display(page, "/odom", "d.trail > 60")
     finally:
         node.close()
-    follow_and_zoom(page, 2, "v.world.robot.robot")
+    follow_and_zoom(page, -9, "v.world.robot.robot")
     screenshot = screenshot_path("view3d_robot.png", tmp_path)
     page.locator("#map-panel").screenshot(path=str(screenshot))
     assert screenshot.stat().st_size > 10_000
+    assert recorder.errors == []
+
+
+def test_the_robot_world_opens_framed_with_the_robot_visible(browser, system: System, room: dict[str, float]) -> None:  # type: ignore[no-untyped-def]
+    """The room fills the canvas at open, the robot is drawn at a visible size, Follow brings
+    the camera close (measured as test_view3d_framing.py measures the drone world)."""
+    with open_dashboard(browser, system.url, "window.skydeck && window.skydeck.view3d !== undefined") as (page, recorder):
+        open_3d(page)
+        v = wait_view(page, "v.camera.world === 'robot' && v.world.robot.robots.some((r) => r.position)")
+        camera = Camera(v["camera"])
+        figures = measure_world(camera, room["room_half_size_m"] + room["wall_thickness_m"], 0.5)
+        robot = v["world"]["robot"]["robots"][0]
+        assert camera.inside(camera.pixel(robot["position"]))
+        figures["robot_px"] = camera.span_px(robot["position"], 2 * room["robot_radius_m"] * robot["scale"])
+        report("robot world", figures)
+        assert figures["filled"] >= MIN_FILLED and max(figures["span_x"], figures["span_y"]) >= MIN_SPAN, figures
+        assert figures["robot_px"] >= MIN_MODEL_PX, figures
+        page.click("#view3d-follow")
+        v = wait_view(page, "v.camera.follow && Math.hypot(...v.camera.position.map((p, i) => p - v.camera.target[i])) < 2.6")
+        robot = v["world"]["robot"]["robots"][0]
+        followed = Camera(v["camera"]).span_px(robot["position"], 2 * room["robot_radius_m"] * robot["scale"])
+        print(f"3D view, Follow: the robot {followed:.0f} px across, at scale {robot['scale']}")
+        assert robot["scale"] == 1 and followed >= FOLLOWED_MODEL_PX
+        # A reload keeps the view the user left (the room's), it does not frame it again.
+        box = page.locator("#view3d-canvas").bounding_box()
+        page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+        page.mouse.wheel(0, -300)
+        page.wait_for_function("JSON.parse(localStorage.getItem('skydeck.view3d') || '{}').camera?.world === 'robot'")
+        page.wait_for_function(
+            "JSON.parse(localStorage.getItem('skydeck.view3d')).camera.position.every((p, i) => Math.abs(p - window.skydeck.view3d().camera.position[i]) < 1e-6)"
+        )
+        before = view(page)["camera"]
+        page.reload()
+        open_3d(page)
+        after = wait_view(page, "v.world.robot.robots.some((r) => r.position)")["camera"]
+        assert math.dist(after["position"], before["position"]) < 1e-6
     assert recorder.errors == []

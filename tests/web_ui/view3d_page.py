@@ -83,14 +83,15 @@ def status_texts(d: dict[str, Any]) -> list[str]:
 
 
 def follow_and_zoom(page: Any, notches: int, followed: str) -> None:
-    """Reset the view, follow the robot (or drone), zoom in ``notches`` wheel steps; wait until the
-    view is centred on ``followed`` (JS: its position in the snapshot ``v``)."""
+    """Reset the view, follow the robot (or drone: Follow brings the camera close to it), zoom in
+    ``notches`` wheel steps (negative: out); wait until the view is centred on ``followed`` (JS:
+    its position in the snapshot ``v``)."""
     page.click("#view3d-reset")
     page.click("#view3d-follow")
     box = page.locator("#view3d-canvas").bounding_box()
     page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
-    for _ in range(notches):
-        page.mouse.wheel(0, -250)
+    for _ in range(abs(notches)):
+        page.mouse.wheel(0, -250 if notches > 0 else 250)
     wait_view(
         page,
         f"v.camera.follow && Math.hypot(v.camera.target[0] - {followed}[0], v.camera.target[1] - {followed}[1]) < 0.2",

@@ -9,7 +9,8 @@ topic, the edge's validation, token and "no echo"); ``call_service`` takes the H
 call path, and always ends with a ``service_response``: ``result: false`` and the reason in
 ``values`` when it failed (no service, no answer within its ``timeout`` or the gateway's, no
 token), and nothing else, as rosbridge_server answers. A service a client advertises is hosted
-by the core for it, so nodes and ``curl`` call it like any other.
+by the core for it, so nodes and ``curl`` call it like any other. ROS 2's action ops
+(``send_action_goal``, ``cancel_action_goal``) are :mod:`.actions`'; ROS 1's actionlib is topics.
 
 A bad frame gets a ``status`` (level ``error``, the op's ``id``) and nothing else happens;
 ``set_level`` asks for ``warning`` and ``info`` statuses too, or ``none``. Statuses are replies
@@ -39,6 +40,7 @@ from services.access import Verb
 from services.core.access import CoreAccess
 from services.core.gateway_topic import declared_type
 from services.protocols.ops import JsonOps, Refused, describe_error
+from services.protocols.rosbridge.actions import ActionGoals, CancelActionGoal, SendActionGoal
 from services.protocols.rosbridge.frames import PublishEnvelopes, fragments, status_frame
 from services.protocols.rosbridge.ops import (
     Advertise,
@@ -55,6 +57,7 @@ from services.protocols.rosbridge.ops import (
     UnadvertiseService,
     Unsubscribe,
     request_body,
+    ros2_time_names,
 )
 from services.protocols.session import ClientSession, incoming
 from services.runtime.edge.frames import FrameRejected, close_with
@@ -118,6 +121,7 @@ class _Connection:
         self._hosted: dict[str, _ClientService] = {}
         self._calls: set[asyncio.Task[None]] = set()
         self._fragments = FragmentBuffer(self._settings.max_message_bytes)
+        self._actions = ActionGoals(session)  # ROS 2's action ops (.actions)
         self._ops = JsonOps("rosbridge", {
             "advertise": (Advertise, self._advertise),
             "unadvertise": (Unadvertise, self._unadvertise),
@@ -131,6 +135,8 @@ class _Connection:
             "set_level": (SetLevel, self._set_level),
             "auth": (Auth, self._auth),
             "fragment": (Fragment, self._fragment),
+            "send_action_goal": (SendActionGoal, self._actions.send_goal),
+            "cancel_action_goal": (CancelActionGoal, self._actions.cancel_goal),
         })  # fmt: skip
 
     # -- the connection ---------------------------------------------------------------------------
@@ -150,6 +156,7 @@ class _Connection:
             task.cancel()
         for service in self._hosted.values():
             service.fail_pending(f"the rosbridge client hosting {service.name} disconnected")
+        self._actions.close()
         self._session.close()
 
     async def _handle(self, text: str) -> None:
@@ -181,7 +188,7 @@ class _Connection:
     async def _publish(self, op: Publish) -> None:
         name = resolve_name(op.topic)
         try:
-            self._session.publish(name, json.dumps(op.msg))
+            self._session.publish(name, ros2_time_names(json.dumps(op.msg), op.msg))
         except FrameRejected as error:
             raise Refused(f"publish to {name}: {error.reason}") from None
 

@@ -32,6 +32,7 @@ __all__ = [
     "UnadvertiseService",
     "Unsubscribe",
     "request_body",
+    "ros2_time_names",
 ]
 
 Id = str | int | None
@@ -123,6 +124,28 @@ def request_body(args: dict[str, Any] | list[Any] | None, request_type: type[Mes
             raise Refused(f"{len(args)} args for {len(names)} request fields ({', '.join(names)})")
         args = dict(zip(names, args, strict=False))
     return json.dumps(args).encode()
+
+
+def ros2_time_names(text: str, msg: dict[str, Any]) -> str:
+    """A published message's JSON with ROS 1's time fields (``{"secs": 0, "nsecs": 0}``, as
+    roslibpy's and roslibjs's actionlib stamp a goal) under ROS 2's names (``sec``, ``nanosec``);
+    ``text`` (``msg`` as JSON) as it is when it has none, which a substring test tells cheaply."""
+    if '"secs"' not in text and '"nsecs"' not in text:
+        return text
+
+    def renamed(value: Any) -> Any:
+        if isinstance(value, list):
+            return [renamed(item) for item in value]
+        if not isinstance(value, dict):
+            return value
+        if ("secs" in value or "nsecs" in value) and "sec" not in value and "nanosec" not in value:
+            value = {_ROS1_TIME.get(key, key): item for key, item in value.items()}
+        return {key: renamed(item) for key, item in value.items()}
+
+    return json.dumps(renamed(msg))
+
+
+_ROS1_TIME = {"secs": "sec", "nsecs": "nanosec"}
 
 
 class FragmentBuffer:

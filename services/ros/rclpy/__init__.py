@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from services.ros.errors import NotProvidedError, not_provided
+from services.ros.errors import not_provided_attributes
 from services.ros.rclpy import (
     callback_groups,
     clock,
@@ -116,7 +116,12 @@ def spin_until_future_complete(
         executor.remove_node(node)
 
 
+_not_provided = not_provided_attributes("rclpy", ("lifecycle", "wait_for_message", "type_support", "experimental"))
+
+
 def __getattr__(name: str) -> Any:
-    if name in ("action", "lifecycle", "wait_for_message", "type_support", "experimental"):
-        raise NotProvidedError(not_provided(f"rclpy.{name}"))
-    raise AttributeError(f"module 'rclpy' has no attribute {name!r}")
+    if name == "action":  # a subpackage: imported on first use, as `import rclpy.action` does
+        import importlib
+
+        return importlib.import_module("services.ros.rclpy.action")
+    return _not_provided(name)

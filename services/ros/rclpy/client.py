@@ -7,15 +7,13 @@ bridge's loop carries the call, so no executor has to spin for it, unlike rclpy)
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from services.ros.bridge import bridge
 from services.ros.rclpy.callback_groups import CallbackGroup
 from services.ros.rclpy.task import Future
+from services.ros.rclpy.waitable import Owner
 from services.runtime.client import Client as RuntimeClient
-
-if TYPE_CHECKING:
-    from services.ros.rclpy.node import Node
 
 __all__ = ["Client"]
 
@@ -23,7 +21,7 @@ __all__ = ["Client"]
 class Client:
     """Calls one service (made by ``Node.create_client``)."""
 
-    def __init__(self, node: Node, client: RuntimeClient[Any], callback_group: CallbackGroup | None) -> None:
+    def __init__(self, node: Owner, client: RuntimeClient[Any], callback_group: CallbackGroup | None) -> None:
         self._node = node
         self._client = client
         self.srv_type = client.srv_type

@@ -13,7 +13,7 @@ import time as _time
 from enum import IntEnum
 from typing import TYPE_CHECKING, Any
 
-from services.runtime.logger import NodeLogger
+from services.runtime.logger import NODE_LOGGERS, NodeLogger
 from shared_models.rcl_interfaces import Log
 
 if TYPE_CHECKING:
@@ -60,7 +60,7 @@ class RcutilsLogger:
     def __init__(self, name: str, node_logger: NodeLogger | None = None) -> None:
         self.name = name
         self._node_logger = node_logger
-        self._python = _logging.getLogger(f"skydeck.node.{name.lstrip('/')}")
+        self._python = _logging.getLogger(f"{NODE_LOGGERS}.{name.lstrip('/')}")
         self._level = LoggingSeverity.INFO
         self._lock = threading.Lock()
         self._seen: dict[tuple[str, int], dict[str, Any]] = {}

@@ -8,15 +8,12 @@ it raises, the caller gets a 500 and the user's traceback is printed; the node k
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from services.ros.bridge import Bridge
 from services.ros.rclpy.callback_groups import CallbackGroup
-from services.ros.rclpy.waitable import JobQueue, run_callback
+from services.ros.rclpy.waitable import JobQueue, Owner, run_callback
 from services.runtime.service import ServiceHandlerError
-
-if TYPE_CHECKING:
-    from services.ros.rclpy.node import Node
 
 __all__ = ["Service"]
 
@@ -25,7 +22,7 @@ class Service(JobQueue):
     """Answers one service (made by ``Node.create_service``)."""
 
     def __init__(
-        self, node: Node, srv_type: Any, srv_name: str, callback: Callable[[Any, Any], Any],
+        self, node: Owner, srv_type: Any, srv_name: str, callback: Callable[[Any, Any], Any],
         callback_group: CallbackGroup | None,
     ) -> None:  # fmt: skip
         super().__init__(node, callback_group, f"the service callback of {srv_name}")

@@ -6,13 +6,10 @@ from __future__ import annotations
 import collections
 import threading
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from services.ros.rclpy.callback_groups import CallbackGroup
-from services.ros.rclpy.waitable import Job, Waitable, run_callback
-
-if TYPE_CHECKING:
-    from services.ros.rclpy.node import Node
+from services.ros.rclpy.waitable import Job, Owner, Waitable, run_callback
 
 __all__ = ["Subscription"]
 
@@ -22,7 +19,7 @@ class Subscription(Waitable):
 
     def __init__(
         self,
-        node: Node,
+        node: Owner,
         msg_type: type[Any],
         topic: str,
         callback: Callable[[Any], Any],

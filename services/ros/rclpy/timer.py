@@ -9,7 +9,7 @@ it ticks again is not queued twice (ticks are skipped, as ROS's timers skip them
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from services.ros.bridge import bridge
 from services.ros.errors import RosFacadeError
@@ -17,11 +17,8 @@ from services.ros.pacing import LoopSchedule
 from services.ros.rclpy.callback_groups import CallbackGroup
 from services.ros.rclpy.clock import Clock
 from services.ros.rclpy.duration import S_TO_NS
-from services.ros.rclpy.waitable import Job, Waitable, run_callback
+from services.ros.rclpy.waitable import Job, Owner, Waitable, run_callback
 from services.runtime.timer import Timer as RuntimeTimer
-
-if TYPE_CHECKING:
-    from services.ros.rclpy.node import Node
 
 __all__ = ["ROSInterruptException", "Rate", "Timer"]
 
@@ -34,7 +31,7 @@ class Timer(Waitable):
     """Calls ``callback()`` every ``timer_period_sec`` (made by ``Node.create_timer``)."""
 
     def __init__(
-        self, node: Node, callback: Callable[[], Any] | None, period_s: float, clock: Clock,
+        self, node: Owner, callback: Callable[[], Any] | None, period_s: float, clock: Clock,
         callback_group: CallbackGroup | None,
     ) -> None:  # fmt: skip
         super().__init__(node, callback_group)

@@ -13,16 +13,27 @@ import collections
 import inspect
 import threading
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 from services.ros.rclpy.callback_groups import CallbackGroup
+from services.ros.rclpy.logging import RcutilsLogger
 
-if TYPE_CHECKING:
-    from services.ros.rclpy.node import Node
-
-__all__ = ["JobQueue", "Waitable", "run_callback"]
+__all__ = ["JobQueue", "Owner", "Waitable", "run_callback"]
 
 Job = Callable[[], Any]
+
+
+class Owner(Protocol):
+    """The node an entity belongs to, as its entities see it (:class:`rclpy.node.Node` is one):
+    a type of its own so that the entities' modules need not import the node's, which imports them."""
+
+    _rclpy_executor: Any  # the executor spinning the node, if one does
+
+    def _rclpy_dispatch(self, job: Job) -> None: ...
+
+    def _rclpy_report(self, error: BaseException, what: str) -> None: ...
+
+    def get_logger(self) -> RcutilsLogger: ...
 
 
 class Waitable:
@@ -30,7 +41,7 @@ class Waitable:
 
     what = "callback"
 
-    def __init__(self, node: Node, callback_group: CallbackGroup | None) -> None:
+    def __init__(self, node: Owner, callback_group: CallbackGroup | None) -> None:
         self._node = node
         self.callback_group = callback_group
 
@@ -51,7 +62,7 @@ class Waitable:
 class JobQueue(Waitable):
     """Callables to run in the executor: service requests, done callbacks of futures."""
 
-    def __init__(self, node: Node, callback_group: CallbackGroup | None, what: str) -> None:
+    def __init__(self, node: Owner, callback_group: CallbackGroup | None, what: str) -> None:
         super().__init__(node, callback_group)
         self.what = what
         self._jobs: collections.deque[Job] = collections.deque()

@@ -20,11 +20,8 @@ is in docs/ros.md.
 
 from __future__ import annotations
 
-from typing import Any
-
-from services.ros.errors import NotProvidedError, not_provided
+from services.ros.errors import not_provided_attributes
 from services.ros.rospy.client import (
-    get_published_topics,
     init_node,
     myargv,
     spin,
@@ -51,6 +48,7 @@ from services.ros.rospy.exceptions import (
     ServiceException,
     TransportException,
 )
+from services.ros.rospy.graph import get_published_topics
 from services.ros.rospy.log import (
     DEBUG,
     ERROR,
@@ -174,7 +172,4 @@ _NOT_PROVIDED = frozenset(
 )
 
 
-def __getattr__(name: str) -> Any:
-    if name in _NOT_PROVIDED:
-        raise NotProvidedError(not_provided(f"rospy.{name}"))
-    raise AttributeError(f"module 'rospy' has no attribute {name!r}")
+__getattr__ = not_provided_attributes("rospy", _NOT_PROVIDED)

@@ -1,4 +1,4 @@
-"""``rospy.init_node``, ``rospy.spin``, ``rospy.myargv`` and the graph questions.
+"""``rospy.init_node``, ``rospy.spin``, ``rospy.myargv``, ``rospy.wait_for_message``.
 
     rospy.init_node("perception")
     rospy.Subscriber("/simulator/boxes", PoseArray, callback)
@@ -25,15 +25,15 @@ from typing import Any
 from services.ros.bridge import bridge
 from services.ros.pacing import wait_for_first_clock
 from services.ros.rclpy.logging import node_logger
-from services.ros.rospy import params
 from services.ros.rospy.core import process
 from services.ros.rospy.exceptions import CoreUnreachableException, ROSException
 from services.ros.rospy.log import logwarn, severity
+from services.ros.rospy.params import get_param, set_param
 from services.runtime.ros_args import ROS_ARGS, RosArguments, parse_ros1_args, split_ros_args
 from services.runtime.settings import NodeSettings, node_settings
 from shared_models import Message
 
-__all__ = ["get_published_topics", "graph_topic", "init_node", "myargv", "spin", "wait_for_message"]
+__all__ = ["init_node", "myargv", "spin", "wait_for_message"]
 
 _CORE_RETRY_S = 1.0
 _SPIN_WAKE_S = 1.0  # spin's wait on shutdown, bounded so Python can deliver signals meanwhile
@@ -84,7 +84,7 @@ def init_node(
     process.init_arguments = given
     for rule in ros1.parameter_rules:  # `_rate:=10`: rospy sets them as the node's private ones
         for key, value in rule.values.items():
-            params.set_param(f"~{key}", value)
+            set_param(f"~{key}", value)
     bridge.start_node(node)
     if use_sim_time:
         wait_for_first_clock(node.get_clock())
@@ -100,7 +100,7 @@ def _use_sim_time(settings: NodeSettings) -> bool:
     warned = False
     while True:
         try:
-            return bool(params.get_param("/use_sim_time", False))
+            return bool(get_param("/use_sim_time", False))
         except CoreUnreachableException as error:
             if not warned:
                 logwarn("%s; will keep trying", error)
@@ -185,28 +185,3 @@ def _wait(event: threading.Event, timeout: float | None) -> bool:
             return False
         event.wait(left)
     return True
-
-
-def _graph() -> dict[str, Any]:
-    node = process.require_node("asking the graph")
-
-    async def fetch() -> dict[str, Any]:
-        reply = await node.http.get(f"{node.settings.core_url.rstrip('/')}/api/graph", timeout_s=5.0)
-        return reply.json() if reply.status == 200 else {}  # type: ignore[no-any-return]
-
-    return bridge.run(fetch())
-
-
-def graph_topic(name: str) -> dict[str, Any]:
-    """What the core's graph says of topic ``name`` (its publishers, subscribers, type)."""
-    return next((t for t in _graph().get("topics", []) if t.get("name") == name), {})
-
-
-def get_published_topics(namespace: str = "/") -> list[list[str]]:
-    """``[[topic, type], ...]`` of the topics with a publisher, under ``namespace``."""
-    prefix = namespace.rstrip("/") + "/"
-    return [
-        [topic["name"], str(topic["type"]).replace("/msg/", "/")]
-        for topic in _graph().get("topics", [])
-        if topic.get("publishers") and topic["name"].startswith(prefix)
-    ]

@@ -14,11 +14,11 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from services.ros.bridge import bridge
+from services.ros.rclpy.logging import LoggingSeverity, RcutilsLogger, get_logger
 from services.ros.rospy.exceptions import ROSInitException
 from services.runtime.ros_args import NameResolver
 
 if TYPE_CHECKING:
-    from services.ros.rclpy.logging import RcutilsLogger
     from services.runtime.node import Node as RuntimeNode
 
 __all__ = [
@@ -29,7 +29,9 @@ __all__ = [
     "is_shutdown",
     "is_shutdown_requested",
     "on_shutdown",
+    "logger",
     "process",
+    "report",
     "resolve_name",
     "signal_shutdown",
 ]
@@ -105,8 +107,6 @@ class RospyProcess:
 def _call_hook(hook: Callable[..., Any], reason: str) -> None:
     import inspect
 
-    from services.ros.rospy.log import report
-
     try:
         parameters = inspect.signature(hook).parameters
         takes_reason = any(p.default is inspect.Parameter.empty for p in parameters.values()) or any(
@@ -172,3 +172,21 @@ def resolve_name(name: str, caller_id: str | None = None) -> str:
         namespace, _, node = caller_id.rpartition("/")
         return NameResolver(namespace or "/", node, []).resolve(name)
     return process.names.resolve(name)
+
+
+def logger() -> RcutilsLogger:
+    """Where rospy's lines go: the node's logger (printed and on ``/rosout``), or before
+    ``init_node`` a logger that only prints, as rospy's does."""
+    if process.logger is not None:
+        return process.logger
+    from services.runtime.executor import configure_logging
+
+    configure_logging()
+    return get_logger("rospy")
+
+
+def report(error: BaseException, what: str) -> None:
+    """A user callback raised: their traceback (their file and line), and the node keeps running."""
+    from services.ros.tracebacks import user_traceback
+
+    logger().log(f"{what} raised (the node keeps running):\n{user_traceback(error)}", LoggingSeverity.ERROR)

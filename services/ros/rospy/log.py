@@ -12,8 +12,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-from services.ros.rclpy.logging import LoggingSeverity, RcutilsLogger, get_logger
-from services.ros.rospy.core import process
+from services.ros.rclpy.logging import LoggingSeverity
+from services.ros.rospy.core import logger
 
 __all__ = [
     "DEBUG",
@@ -37,7 +37,6 @@ __all__ = [
     "logwarn",
     "logwarn_once",
     "logwarn_throttle",
-    "report",
     "severity",
 ]
 
@@ -60,15 +59,6 @@ def severity(level: int) -> LoggingSeverity:
         raise ValueError(f"log_level must be rospy.DEBUG, INFO, WARN, ERROR or FATAL, got {level!r}") from None
 
 
-def _logger() -> RcutilsLogger:
-    if process.logger is not None:
-        return process.logger
-    from services.runtime.executor import configure_logging
-
-    configure_logging()  # before init_node rospy prints too
-    return get_logger("rospy")
-
-
 def _text(msg: Any, args: tuple[Any, ...]) -> str:
     return str(msg) % args if args else str(msg)
 
@@ -77,7 +67,7 @@ def _text(msg: Any, args: tuple[Any, ...]) -> str:
 # line three frames up (what `_throttle`/`_once` key on, and what /rosout names as the place).
 def _every_time(level: LoggingSeverity) -> Callable[..., None]:
     def log(msg: Any, *args: Any, **kwargs: Any) -> None:
-        _logger().log(_text(msg, args), level)
+        logger().log(_text(msg, args), level)
 
     log.__doc__ = f"Log at {level.name}: ``msg % args`` (rospy's form: ``loginfo('got %s', n)``)."
     return log
@@ -85,7 +75,7 @@ def _every_time(level: LoggingSeverity) -> Callable[..., None]:
 
 def _throttled(level: LoggingSeverity) -> Callable[..., None]:
     def log(period: float, msg: Any, *args: Any, **kwargs: Any) -> None:
-        _logger().log(_text(msg, args), level, throttle_duration_sec=period)
+        logger().log(_text(msg, args), level, throttle_duration_sec=period)
 
     log.__doc__ = f"Log at {level.name} at most once every ``period`` seconds from this line."
     return log
@@ -93,7 +83,7 @@ def _throttled(level: LoggingSeverity) -> Callable[..., None]:
 
 def _once(level: LoggingSeverity) -> Callable[..., None]:
     def log(msg: Any, *args: Any, **kwargs: Any) -> None:
-        _logger().log(_text(msg, args), level, once=True)
+        logger().log(_text(msg, args), level, once=True)
 
     log.__doc__ = f"Log at {level.name} the first time this line runs only."
     return log
@@ -116,9 +106,3 @@ logwarn_once = _once(LoggingSeverity.WARN)
 logerr_once = _once(LoggingSeverity.ERROR)
 logfatal_once = _once(LoggingSeverity.FATAL)
 
-
-def report(error: BaseException, what: str) -> None:
-    """A user callback raised: their traceback (their file and line), and the node keeps running."""
-    from services.ros.tracebacks import user_traceback
-
-    _logger().log(f"{what} raised (the node keeps running):\n{user_traceback(error)}", LoggingSeverity.ERROR)

@@ -24,9 +24,8 @@ from typing import Any
 from pydantic import ValidationError
 
 from services.ros.bridge import Bridge, bridge
-from services.ros.rospy.core import process
+from services.ros.rospy.core import process, report
 from services.ros.rospy.exceptions import ROSException, ROSInterruptException, ServiceException
-from services.ros.rospy.log import report
 from services.runtime.client import Client
 from services.runtime.errors import ServiceCallRejectedError, ServiceError
 from services.runtime.service import ServiceHandlerError

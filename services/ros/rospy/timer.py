@@ -21,9 +21,8 @@ from collections.abc import Callable
 from typing import Any
 
 from services.ros.pacing import S_TO_NS, LoopSchedule, sleep_until
-from services.ros.rospy.core import process
+from services.ros.rospy.core import process, report
 from services.ros.rospy.exceptions import ROSInterruptException
-from services.ros.rospy.log import report
 from services.ros.rospy.rostime import Duration, Time, is_wallclock, now_ns
 from shared_models.builtin_interfaces import Duration as DurationMsg
 

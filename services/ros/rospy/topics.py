@@ -20,8 +20,9 @@ from typing import Any
 
 from services.ros.bridge import bridge
 from services.ros.rclpy.publisher import Publisher as LoopPublisher
-from services.ros.rospy.core import process
-from services.ros.rospy.log import logwarn_once, report
+from services.ros.rospy.core import process, report
+from services.ros.rospy.graph import graph_topic
+from services.ros.rospy.log import logwarn_once
 from shared_models import Message
 
 __all__ = ["Publisher", "Subscriber", "check_message_class"]
@@ -129,8 +130,6 @@ class Subscriber:
 
     def get_num_connections(self) -> int:
         """How many publishers of the topic there are in the graph."""
-        from services.ros.rospy.client import graph_topic
-
         return len(graph_topic(self.name).get("publishers", []))
 
     def unregister(self) -> None:

@@ -22,9 +22,7 @@ and they use its rospy node. What differs from ROS is in docs/ros.md ("tf2").
 
 from __future__ import annotations
 
-from typing import Any
-
-from services.ros.errors import NotProvidedError, not_provided
+from services.ros.errors import not_provided_attributes
 from services.ros.tf2_ros.buffer import Buffer
 from services.ros.tf2_ros.buffer_core import BufferCore
 from services.ros.tf2_ros.buffer_interface import TransformRegistration, TypeException
@@ -59,7 +57,4 @@ __all__ = [
 _NOT_PROVIDED = frozenset({"BufferClient", "MessageFilter", "StaticTransformListener", "MultipleStaticTransformBroadcaster"})
 
 
-def __getattr__(name: str) -> Any:
-    if name in _NOT_PROVIDED:
-        raise NotProvidedError(not_provided(f"tf2_ros.{name}"))
-    raise AttributeError(f"module 'tf2_ros' has no attribute {name!r}")
+__getattr__ = not_provided_attributes("tf2_ros", _NOT_PROVIDED)

@@ -15,9 +15,9 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
+import services.ros.tf2_ros.do_transform  # noqa: F401  (registers geometry_msgs' transforms)
 from services.ros.bridge import bridge
 from services.ros.rclpy.task import Future
-from services.ros.tf2_ros import do_transform as _registers_geometry_msgs  # noqa: F401
 from services.ros.tf2_ros.buffer_core import BufferCore
 from services.ros.tf2_ros.buffer_interface import TransformRegistration, TypeException
 from services.ros.tf2_ros.exceptions import TransformException

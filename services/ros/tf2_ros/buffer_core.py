@@ -345,13 +345,12 @@ class BufferCore:
         source_chain: list[tuple[int, str]] = []  # (the link's newest stamp, its parent), upwards
         frame, newest = source, None
         for _ in range(_MAX_GRAPH_DEPTH):
-            cache = self._frames.get(frame)
-            latest = cache.latest() if cache is not None else None
-            if cache is None or latest is None:
+            link = self._newest_link(frame)
+            if link is None:
                 break
-            newest = _older(newest, cache.latest_stamp)
-            source_chain.append((cache.latest_stamp, latest.parent))
-            frame = latest.parent
+            newest = _older(newest, link[0])
+            source_chain.append(link)
+            frame = link[1]
             if frame == target:
                 return newest or 0
         else:
@@ -359,15 +358,14 @@ class BufferCore:
         parents = {parent for _, parent in source_chain}
         frame, newest, common_parent = target, None, None
         for _ in range(_MAX_GRAPH_DEPTH):
-            cache = self._frames.get(frame)
-            latest = cache.latest() if cache is not None else None
-            if cache is None or latest is None:
+            link = self._newest_link(frame)
+            if link is None:
                 break
-            newest = _older(newest, cache.latest_stamp)
-            if latest.parent in parents:
-                common_parent = latest.parent
+            newest = _older(newest, link[0])
+            if link[1] in parents:
+                common_parent = link[1]
                 break
-            frame = latest.parent
+            frame = link[1]
             if frame == source:
                 return newest or 0
         else:
@@ -379,6 +377,15 @@ class BufferCore:
             if parent == common_parent:
                 break
         return newest or 0
+
+    def _newest_link(self, frame: str) -> tuple[int, str] | None:
+        """The newest stamp of ``frame``'s link to its parent, and the parent (None: a root, or a
+        frame nobody broadcasts)."""
+        cache = self._frames.get(frame)
+        latest = cache.latest() if cache is not None else None
+        if cache is None or latest is None:
+            return None
+        return cache.latest_stamp, latest.parent
 
     def _loop_error(self) -> LookupException:
         frames = "".join(

@@ -14,9 +14,7 @@ themselves as not provided.
 
 from __future__ import annotations
 
-from typing import Any
-
-from services.ros.errors import NotProvidedError, not_provided
+from services.ros.errors import not_provided_attributes
 from services.ros.tf_transformations.decomposition import compose_matrix, decompose_matrix
 from services.ros.tf_transformations.euler import (
     euler_from_matrix,
@@ -29,7 +27,6 @@ from services.ros.tf_transformations.matrices import (
     identity_matrix,
     inverse_matrix,
     is_same_transform,
-    random_rotation_matrix,
     random_vector,
     rotation_from_matrix,
     rotation_matrix,
@@ -50,6 +47,7 @@ from services.ros.tf_transformations.quaternions import (
     quaternion_real,
     quaternion_slerp,
     random_quaternion,
+    random_rotation_matrix,
 )
 
 __all__ = [
@@ -104,7 +102,4 @@ _NOT_PROVIDED = frozenset(
 )
 
 
-def __getattr__(name: str) -> Any:
-    if name in _NOT_PROVIDED:
-        raise NotProvidedError(not_provided(f"tf_transformations.{name}"))
-    raise AttributeError(f"module 'tf_transformations' has no attribute {name!r}")
+__getattr__ = not_provided_attributes("tf_transformations", _NOT_PROVIDED)

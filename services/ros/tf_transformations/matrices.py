@@ -20,7 +20,6 @@ __all__ = [
     "identity_matrix",
     "inverse_matrix",
     "is_same_transform",
-    "random_rotation_matrix",
     "random_vector",
     "rotation_from_matrix",
     "rotation_matrix",
@@ -165,10 +164,3 @@ def is_same_transform(matrix0: Any, matrix1: Any) -> bool:
     m0 /= m0[3, 3]
     m1 /= m1[3, 3]
     return bool(np.allclose(m0, m1))
-
-
-def random_rotation_matrix(rand: Any = None) -> Array:
-    """A rotation drawn uniformly; ``rand``: three numbers in [0, 1) to draw it from."""
-    from services.ros.tf_transformations.quaternions import quaternion_matrix, random_quaternion
-
-    return quaternion_matrix(random_quaternion(rand))

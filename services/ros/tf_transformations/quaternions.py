@@ -25,6 +25,7 @@ __all__ = [
     "quaternion_real",
     "quaternion_slerp",
     "random_quaternion",
+    "random_rotation_matrix",
 ]
 
 
@@ -147,3 +148,8 @@ def random_quaternion(rand: Any = None) -> Array:
     r1, r2 = math.sqrt(1.0 - u[0]), math.sqrt(u[0])
     t1, t2 = 2.0 * math.pi * u[1], 2.0 * math.pi * u[2]
     return np.array([math.sin(t1) * r1, math.cos(t1) * r1, math.sin(t2) * r2, math.cos(t2) * r2])
+
+
+def random_rotation_matrix(rand: Any = None) -> Array:
+    """A rotation drawn uniformly; ``rand``: three numbers in [0, 1) to draw it from."""
+    return quaternion_matrix(random_quaternion(rand))

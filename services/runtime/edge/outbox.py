@@ -16,7 +16,7 @@ import asyncio
 from collections import deque
 from collections.abc import Callable
 
-from services.runtime.edge import batch
+from services.runtime.edge.batch import BATCH_MAX_BYTES, join, one_line
 from services.runtime.edge.encoding import Encoding
 
 __all__ = ["DEFAULT_OUTBOX_BYTES", "Outbox"]
@@ -58,7 +58,7 @@ class Outbox:
 
     def sendable(self, frame: Frame) -> Frame:
         """``frame`` as this reader is sent it: on one line for a batching JSON reader."""
-        return batch.one_line(frame) if self.batch else frame
+        return one_line(frame) if self.batch else frame
 
     def push(self, frame: Frame) -> None:
         """Queue ``frame``; called on the publish path, so it never blocks."""
@@ -70,7 +70,7 @@ class Outbox:
             return
         # A batch that is full goes now, as unbatched frames would have: only a reader whose
         # socket cannot take it loses frames, never one that a long turn filled up.
-        if self.batch and frames and self._bytes + len(frame) > batch.BATCH_MAX_BYTES:
+        if self.batch and frames and self._bytes + len(frame) > BATCH_MAX_BYTES:
             self._send_queued()
         frames.append(frame)
         self._bytes += len(frame)
@@ -98,8 +98,8 @@ class Outbox:
     def _send_queued(self) -> bool:
         """Send the queued frames as one, from here, if the writer is idle and they fit one."""
         frames = self._frames
-        fits_one = len(frames) == 1 or self._bytes <= batch.BATCH_MAX_BYTES
-        if fits_one and self.send_now is not None and self.send_now(batch.join(list(frames))[0]):
+        fits_one = len(frames) == 1 or self._bytes <= BATCH_MAX_BYTES
+        if fits_one and self.send_now is not None and self.send_now(join(list(frames))[0]):
             frames.clear()
             self._bytes = 0
             return True
@@ -125,7 +125,7 @@ class Outbox:
         self._frames.clear()
         self._bytes = 0
         if self.batch and len(frames) > 1:
-            return batch.join(frames)
+            return join(frames)
         return frames
 
     async def latest(self) -> Frame:

@@ -13,11 +13,12 @@ import termios
 import threading
 import time
 from collections.abc import Iterator
+from typing import Any
 
 import pytest
 
 from sim_server.robot.limits import ROBOT_STARTS_M
-from tests.sim_server.robot.room import Recorder, behaviour, start_room, truth, wait_for
+from tests.sim_server.robot.room import Recorder, behaviour, reset_room, start_room, truth, wait_for
 from tests.web_ui.system import REPO, System
 
 pytestmark = [pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(120)]
@@ -28,6 +29,13 @@ def room() -> Iterator[System]:
     system = start_room("--seed", "3", "--speed", "4", "--robots", "2")
     yield system
     system.stop()
+
+
+@pytest.fixture
+def moved_room(room: System) -> Iterator[System]:
+    """The room for a test that drives both robots away: reset after it, for the next."""
+    yield room
+    reset_room(room)
 
 
 def _moved(system: System, robot: int) -> float:
@@ -52,6 +60,32 @@ def test_a_behaviour_in_one_namespace_leaves_the_other_robot_alone(room: System)
     assert robot1_commands.messages == []
     assert _moved(room, 0) < 0.01 and _moved(room, 1) > 0.5
     assert "/robot2/cmd_vel" in {t["name"] for t in wait_for(room, "/api/graph", lambda g: True)["topics"]}
+
+
+@pytest.mark.parametrize(
+    "form", [("--namespace", "/robot{n}"), ("--ros-args", "-r", "__ns:=/robot{n}")], ids=["--namespace", "__ns"]
+)
+def test_one_behaviour_per_robot_each_a_node_in_its_namespace(moved_room: System, form: tuple[str, ...]) -> None:
+    room = moved_room
+    def where_for(n: int) -> list[str]:
+        return [word.format(n=n) for word in form]
+
+    starts = [truth(room, robot)[:2] for robot in (0, 1)]
+    with behaviour(room, "wall_follower", *where_for(1)) as first, behaviour(room, "wall_follower", *where_for(2)) as second:
+        wait_for(room, "/api/graph", lambda g: {"/robot1/wall_follower", "/robot2/wall_follower"} <= {n["name"] for n in g["nodes"]})
+        for robot in (0, 1):  # both drive, each its own robot, at once
+            wait_for(room, "/simulator/robots", lambda m, r=robot: _distance(m, r, starts[r]) > 0.3, timeout_s=30)
+        graph = wait_for(room, "/api/graph", lambda g: True)
+        publishers = {t["name"]: t["publishers"] for t in graph["topics"]}
+        assert publishers["/robot1/cmd_vel"] == ["/robot1/wall_follower"]
+        assert publishers["/robot2/cmd_vel"] == ["/robot2/wall_follower"]
+        assert "/wall_follower" not in {n["name"] for n in graph["nodes"]}
+        assert first.returncode is None and second.returncode is None  # neither took the other's name
+
+
+def _distance(robots: dict[str, Any], robot: int, start: tuple[float, float]) -> float:
+    position = robots["poses"][robot]["position"]
+    return math.hypot(position["x"] - start[0], position["y"] - start[1])
 
 
 def test_a_bad_parameter_or_namespace_is_one_line() -> None:

@@ -80,9 +80,25 @@ async def test_service_list_info_and_call(core, start_node) -> None:
     status, out, _ = await skydeck(core.url, "service", "call", "/talker/ping")
     assert status == 0 and "success: true" in out and "message: pong" in out
     status, _, err = await skydeck(core.url, "service", "call", "/talker/pong")
-    assert status == 1 and "no service /talker/pong" in err
+    assert status == 1 and "unknown service /talker/pong (did you mean /talker/ping?)" in err
     status, _, err = await skydeck(core.url, "service", "call", "/talker/ping", "{extra: 1}")
     assert status == 1 and "extra" in err and "422" in err
+
+
+async def test_service_list_leads_with_the_commands_and_shows_skydeck_s_own_with_all(core, start_node) -> None:
+    await start_node(Talker)
+    status, out, _ = await skydeck(core.url, "service", "list")
+    names = out.split()
+    assert status == 0 and names[0] == "/talker/ping"
+    assert names[1:] == sorted(names[1:]) and len(names[1:]) == 6
+    assert all(name.startswith("/talker/") and "_parameter" in name for name in names[1:])
+    assert not [name for name in names if name.startswith("/rosapi/")]
+    status, out, _ = await skydeck(core.url, "service", "list", "--all", "-t")
+    lines = out.splitlines()
+    assert status == 0 and lines[: len(names)] == [line for line in lines if not line.startswith("/rosapi/")]
+    assert "/rosapi/topics [rosapi_msgs/srv/Topics]" in lines[len(names) :]
+    status, out, _ = await skydeck(core.url, "service", "list", "-a")
+    assert out.split()[: len(names)] == names and len(out.split()) > len(names)
 
 
 async def test_node_list_and_info_show_pid(core, start_node) -> None:

@@ -332,6 +332,34 @@ async def test_bash_completes_verbs_flags_live_names_types_and_files(core, start
     assert await asyncio.to_thread(complete, f"skydeck launch {launch_file} --speed 2 rate:=3 w") == ["world:="]
 
 
+class FibonacciServer(Node):
+    """Serves the action /fibonacci (goals are accepted and left waiting)."""
+
+    def __init__(self, settings) -> None:
+        from services.runtime.actions import ActionServer
+        from shared_models import get_interface
+
+        super().__init__("fibonacci_server", settings=settings)
+
+        async def accept(goal) -> bool:
+            return True
+
+        ActionServer(self, get_interface("example_interfaces/action/Fibonacci"), "fibonacci",
+                     on_goal=accept, on_cancel=accept, on_accepted=lambda goal: None)  # fmt: skip
+
+
+async def test_bash_completes_action_names_and_types(core, start_node) -> None:
+    await start_node(FibonacciServer)
+
+    def complete(line: str) -> list[str]:
+        return _bash_complete(core.url, line)
+
+    assert await asyncio.to_thread(complete, "skydeck act") == ["action"]
+    assert await asyncio.to_thread(complete, "skydeck action info /fi") == ["/fibonacci"]
+    assert await asyncio.to_thread(complete, "skydeck action send_goal /fibonacci example_interfaces/action/F") == [
+        "example_interfaces/action/Fibonacci"]  # fmt: skip
+
+
 def _zsh_complete(core_url: str, lines: list[str], cwd: Path) -> list[tuple[list[str], str]]:
     """Complete each of ``lines`` in a real interactive zsh (compinit, the script sourced, Tab
     pressed in a pseudo-terminal: zsh_complete.zsh); for each, what was offered and the line after."""

@@ -73,6 +73,26 @@ async def test_openapi_documents_every_live_service(core, start_node) -> None:
     assert "cdn" not in docs.text.lower()
 
 
+async def test_docs_lead_with_the_world_s_nodes_then_parameters_then_the_core(core, start_node) -> None:
+    await start_node(Sim)
+    await start_node(Control)
+    async with httpx.AsyncClient() as http:
+        schema = (await http.get(core.url + "/openapi.json")).json()
+    tags = [tag["name"] for tag in schema["tags"]]
+    assert tags[:5] == [
+        "node /sim",  # control has no commands or topics of its own: no section
+        "topics of several nodes",  # /rosout and /parameter_events: every node's, not the first's
+        "node /control parameters",
+        "node /sim parameters",
+        "registry",
+    ], tags
+    assert schema["paths"]["/rosout"]["get"]["tags"] == ["topics of several nodes"]
+    assert schema["paths"]["/simulator/reset"]["post"]["tags"] == ["node /sim"]
+    # the paths in the same order, so that any OpenAPI viewer shows them so
+    first_tags = [next(iter(item.values()))["tags"][0] for item in schema["paths"].values()]
+    assert list(dict.fromkeys(first_tags)) == tags
+
+
 async def test_interfaces_api(core) -> None:
     async with httpx.AsyncClient() as http:
         listing = (await http.get(core.url + "/api/interfaces")).json()

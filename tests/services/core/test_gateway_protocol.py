@@ -211,7 +211,7 @@ async def test_a_fault_of_the_core_while_forwarding_is_a_500_and_a_closed_connec
     def broken(*args: object, **kwargs: object) -> None:
         raise RuntimeError("a bug in the forward path")
 
-    core.app.state.gateway.forward_then = broken  # type: ignore[union-attr]
+    core.app.state.calls.start = broken  # type: ignore[union-attr]
     reader, writer = await asyncio.open_connection("127.0.0.1", core.port)
     writer.write(post("/counter/count"))
     [reply] = await read_replies(reader, 1)

@@ -36,7 +36,8 @@ pytestmark = pytest.mark.timeout(30)
 REPO = Path(__file__).resolve().parents[3]
 
 # A stand-in node. It prints a line on stdout with what it was given, then serves GET /health on
-# --port; flags make it exit at once, spawn a grandchild, never serve, or ignore SIGTERM.
+# --port; flags make it exit at once, spawn a grandchild, never serve, serve only once a file
+# exists, create a file, or ignore SIGTERM.
 NODE_PROGRAM = textwrap.dedent(
     """\
     import argparse, http.server, os, signal, subprocess, sys, time
@@ -47,9 +48,11 @@ NODE_PROGRAM = textwrap.dedent(
     parser.add_argument("--grandchild")
     parser.add_argument("--no-health", action="store_true")
     parser.add_argument("--ignore-term", action="store_true")
+    parser.add_argument("--health-after")
+    parser.add_argument("--touch")
     args, _ = parser.parse_known_args()  # a core's endpoint ports too (--rosbridge-port ...)
     print(f"hello on {args.port} core={os.environ.get('SKYDECK_CORE_URL')} "
-          f"extra={os.environ.get('EXTRA', '')}")
+          f"extra={os.environ.get('EXTRA', '')} grace={os.environ.get('SKYDECK_CORE_START_GRACE_S', '')}")
     if args.exit is not None:
         print("boom: cannot go on", file=sys.stderr)
         sys.exit(args.exit)
@@ -62,6 +65,10 @@ NODE_PROGRAM = textwrap.dedent(
         os.replace(args.grandchild + ".tmp", args.grandchild)
     if args.no_health:
         time.sleep(60)
+    if args.touch:
+        open(args.touch, "w").close()
+    while args.health_after and not os.path.exists(args.health_after):
+        time.sleep(0.01)
 
     class Health(http.server.BaseHTTPRequestHandler):
         def do_GET(self):
@@ -179,6 +186,18 @@ async def test_all_nodes_come_up_in_order(launch: Launch) -> None:
     assert "[launch] all 3 nodes up; Ctrl-C stops them" in text
 
 
+async def test_the_nodes_start_together_with_the_core(launch: Launch, tmp_path: Path) -> None:
+    # a answers only once c has started: one after the other, c would never start
+    flag = str(tmp_path / "c-started")
+    hub = NodeSpec(name="hub", run="core", port_offset=0, args=("--health-after", flag))
+    supervisor = launch(hub, node("a", 1, "--health-after", flag), node("b", 2), node("c", 3, "--touch", flag))
+    await supervisor.start()
+    assert ready_names(launch.out) == ["hub", "a", "b", "c"]  # said in launch order all the same
+    # the nodes beside the core are told to wait for it quietly while it starts, the core is not
+    text = launch.out.getvalue()
+    assert re.search(r"^\[a\] hello .* grace=20$", text, re.M) and re.search(r"^\[hub\] hello .* grace=$", text, re.M)
+
+
 async def test_the_core_starts_first_and_every_node_is_told_where_it_is(launch: Launch) -> None:
     supervisor = launch(node("a", 1), NodeSpec(name="hub", run="core", port_offset=3), node("b", 2))
     await supervisor.start()
@@ -237,10 +256,11 @@ async def test_a_node_that_exits_at_once_is_a_launch_error(launch: Launch, tmp_p
     assert str(caught.value) == "b exited with exit code 3 before it was ready: boom: cannot go on"
     assert (caught.value.node, caught.value.exit_code) == ("b", 3)
     assert caught.value.stderr_tail == ("boom: cannot go on",)
-    # What did start is stopped again, grandchild included; what came after never started.
+    # The nodes start together (none is the core here): each is stopped again, grandchild
+    # included; the ready lines come in launch order, up to the one that failed.
     assert ready_names(launch.out) == ["a"]
     assert supervisor.status("a").state is NodeState.STOPPED
-    assert supervisor.status("c").state is NodeState.WAITING
+    assert supervisor.status("c").state is NodeState.STOPPED and supervisor.status("c").restarts == 0
     await wait_gone([int(grandchild.read_text())])
     assert "[b] boom: cannot go on" in launch.out.getvalue()
 
@@ -379,12 +399,9 @@ async def test_stop_during_start_stops_what_started(launch: Launch) -> None:
             await asyncio.sleep(0.01)  # no event marks "b's process exists"; it is one spawn away
     await supervisor.stop()
     await starting  # returns quietly: a stop was asked for
-    assert ready_names(launch.out) == ["a"]
-    assert [supervisor.status(name).state for name in "abc"] == [
-        NodeState.STOPPED,
-        NodeState.STOPPED,
-        NodeState.WAITING,
-    ]
+    assert ready_names(launch.out) == ["a"]  # c's line, if it came up, waits for b's: never said
+    # a, b and c started together (none is the core here): all are stopped
+    assert [supervisor.status(name).state for name in "abc"] == [NodeState.STOPPED] * 3
 
 
 async def test_start_twice_is_an_error(launch: Launch) -> None:

@@ -4,11 +4,21 @@ and each way a request can fail."""
 from __future__ import annotations
 
 import asyncio
+import datetime
+import http.server
+import ipaddress
 import socket
+import ssl
+import threading
 from collections.abc import AsyncIterator
+from pathlib import Path
 
 import pytest
 import uvicorn
+from cryptography import x509
+from cryptography.hazmat.primitives import hashes, serialization
+from cryptography.hazmat.primitives.asymmetric import ec
+from cryptography.x509.oid import NameOID
 from starlette.applications import Starlette
 from starlette.requests import Request
 from starlette.responses import JSONResponse, Response, StreamingResponse
@@ -19,6 +29,7 @@ from services.runtime.http_client import (
     HttpClient,
     HttpTimeout,
     HttpUnreachable,
+    request_once,
 )
 from tests.conftest import free_port, held_again, held_socket, serve_on
 
@@ -185,9 +196,9 @@ async def test_header_with_a_line_break_is_refused(server: str, client: HttpClie
         await client.post(f"{server}/echo", b"{}", timeout_s=5, headers={"Authorization": "Bearer x\r\nX-Evil: 1"})
 
 
-async def test_only_plain_http_urls(client: HttpClient) -> None:
-    with pytest.raises(HttpUnreachable, match="only http://"):
-        await client.get("https://example.org/", timeout_s=5)
+async def test_only_http_and_https_urls(client: HttpClient) -> None:
+    with pytest.raises(HttpUnreachable, match="http:// and https:// URLs only"):
+        await client.get("ftp://example.org/", timeout_s=5)
 
 
 async def test_kept_alive_connection_dropped_by_the_server_is_retried_once_on_a_new_one(client: HttpClient) -> None:
@@ -291,3 +302,102 @@ async def test_a_fault_in_the_callback_is_logged_and_the_client_keeps_working(
     await asyncio.wait_for(called.wait(), 5)
     assert "handling a reply of the HTTP client failed" in caplog.text
     assert (await client.get(f"{server}/echo", timeout_s=5)).status == 200
+
+
+# -- https (a core behind a TLS proxy, as the CLI reaches it) ------------------------------------
+
+
+def _certificate(folder: Path) -> tuple[Path, Path]:
+    """A self-signed certificate for 127.0.0.1 and its key, as PEM files."""
+    key = ec.generate_private_key(ec.SECP256R1())
+    name = x509.Name([x509.NameAttribute(NameOID.COMMON_NAME, "127.0.0.1")])
+    now = datetime.datetime.now(datetime.UTC)
+    certificate = (
+        x509.CertificateBuilder()
+        .subject_name(name)
+        .issuer_name(name)
+        .public_key(key.public_key())
+        .serial_number(x509.random_serial_number())
+        .not_valid_before(now - datetime.timedelta(minutes=5))
+        .not_valid_after(now + datetime.timedelta(hours=1))
+        .add_extension(x509.SubjectAlternativeName([x509.IPAddress(ipaddress.ip_address("127.0.0.1"))]), critical=False)
+        .add_extension(x509.BasicConstraints(ca=True, path_length=None), critical=True)
+        .sign(key, hashes.SHA256())
+    )
+    cert_file, key_file = folder / "cert.pem", folder / "key.pem"
+    cert_file.write_bytes(certificate.public_bytes(serialization.Encoding.PEM))
+    key_file.write_bytes(
+        key.private_bytes(serialization.Encoding.PEM, serialization.PrivateFormat.PKCS8, serialization.NoEncryption())
+    )
+    return cert_file, key_file
+
+
+@pytest.fixture
+async def tls_server(tmp_path: Path) -> AsyncIterator[tuple[str, Path]]:
+    cert_file, key_file = _certificate(tmp_path)
+    sock = held_socket()
+    config = uvicorn.Config(APP, log_level="warning", lifespan="off", ssl_certfile=cert_file, ssl_keyfile=key_file)
+    instance = uvicorn.Server(config)
+    task = await serve_on(instance, sock)
+    _peers.clear()
+    yield f"https://127.0.0.1:{sock.getsockname()[1]}", cert_file
+    instance.should_exit = True
+    await task
+
+
+async def test_https_to_a_trusted_server_keeps_its_connection(tls_server: tuple[str, Path]) -> None:
+    url, cert_file = tls_server
+    client = HttpClient(tls=ssl.create_default_context(cafile=cert_file))
+    try:
+        replies = [await client.post(f"{url}/echo?n={n}", b"{}", timeout_s=5) for n in range(3)]
+    finally:
+        await client.aclose()
+    assert [reply.json()["query"] for reply in replies] == ["n=0", "n=1", "n=2"]
+    assert len(_peers) == 1  # one TLS connection, kept alive
+
+
+async def test_https_to_a_server_whose_certificate_is_not_trusted_is_unreachable(tls_server: tuple[str, Path]) -> None:
+    url, _ = tls_server
+    client = HttpClient()  # the system's certificates: a self-signed one is not among them
+    try:
+        with pytest.raises(HttpUnreachable, match="CERTIFICATE_VERIFY_FAILED"):
+            await client.get(f"{url}/echo", timeout_s=5)
+    finally:
+        await client.aclose()
+
+
+# -- one request from blocking code ---------------------------------------------------------------
+
+
+async def test_request_once_from_a_thread(server: str) -> None:
+    reply = await asyncio.to_thread(request_once, "POST", f"{server}/echo", b"{}", timeout_s=5, headers={"x-extra": "1"})
+    assert reply.json()["headers"]["x-extra"] == "1"
+
+
+class _Ok(http.server.BaseHTTPRequestHandler):
+    def do_GET(self) -> None:  # noqa: N802 (http.server's name)
+        self.send_response(200)
+        self.send_header("Content-Length", "2")
+        self.end_headers()
+        self.wfile.write(b"ok")
+
+    def log_message(self, *args: object) -> None:
+        pass
+
+
+async def test_request_once_from_blocking_code_in_a_coroutine() -> None:
+    """A harness's poll called where a loop runs: the request takes a thread of its own (this
+    loop waits, as for any blocking call; the server is elsewhere, here another thread)."""
+    with http.server.ThreadingHTTPServer(("127.0.0.1", 0), _Ok) as other:
+        thread = threading.Thread(target=other.serve_forever, daemon=True)
+        thread.start()
+        try:
+            reply = request_once("GET", f"http://127.0.0.1:{other.server_address[1]}/", timeout_s=5)
+        finally:
+            other.shutdown()
+    assert (reply.status, reply.body) == (200, b"ok")
+
+
+def test_request_once_to_nobody_raises_unreachable() -> None:
+    with pytest.raises(HttpUnreachable, match="cannot connect"):
+        request_once("GET", f"http://127.0.0.1:{free_port()}/", timeout_s=5)

@@ -49,6 +49,25 @@ async def test_node_started_before_core_waits_once_then_registers(caplog) -> Non
         await core.stop()
 
 
+async def test_a_node_started_beside_its_core_waits_quietly_while_it_starts(caplog) -> None:
+    # `skydeck launch` starts its nodes with the core: they wait its grace without a warning,
+    # ask often, and say it only if the core is still not there after it
+    caplog.set_level(logging.INFO, logger="skydeck.runtime")
+    core = CoreProcess()
+    node = Collector(_settings(core.url).model_copy(update={"core_start_grace_s": 0.8}))
+    await node.start()
+    try:
+        await asyncio.sleep(0.4)  # retries inside the grace: nothing said
+        assert "waiting for core at" not in caplog.text
+        await wait_until(lambda: "waiting for core at" in caplog.text, what="the line once the grace is over")
+        await core.start()
+        await wait_until(lambda: "/collector" in core.registry.nodes, what="registration")
+    finally:
+        await node.stop()
+        await core.stop()
+    assert caplog.text.count("waiting for core at") == 1
+
+
 async def test_core_restart_streams_keep_flowing_and_nodes_register_again() -> None:
     core = CoreProcess()
     await core.start()

@@ -1,10 +1,11 @@
 // The /rosout console (rqt_console): newest at the bottom, filterable by level, node and text,
 // bounded to the last 500 entries.
 
-import { TopicSocket } from "./api.js";
+import { getJson, TopicSocket } from "./api.js";
 import { stampSeconds } from "./geometry.js";
 
 const MAX_ENTRIES = 500;
+const BACKLOG_LINES = 200; // of the core's last /rosout lines, shown when the page opens
 const LEVELS = { 10: "DEBUG", 20: "INFO", 30: "WARN", 40: "ERROR", 50: "FATAL" };
 
 export class LogConsole {
@@ -24,8 +25,28 @@ export class LogConsole {
     });
   }
 
-  start() {
-    this.socket = new TopicSocket("/rosout", { queue: 200, onMessage: (msg) => this.add(msg) }).openWhenPublished();
+  /**
+   * The core's backlog first (GET /api/rosout: what was said before the page came), then the
+   * stream. The stream opens first and waits, so no line falls between the two; a line in both
+   * (said while the backlog was fetched) is shown once.
+   */
+  async start() {
+    const early = [];
+    let backlogShown = false;
+    this.socket = new TopicSocket("/rosout", {
+      queue: 200,
+      onMessage: (msg) => (backlogShown ? this.add(msg) : early.push(msg)),
+    }).openWhenPublished();
+    let backlog = [];
+    try {
+      backlog = await getJson(`/api/rosout?limit=${BACKLOG_LINES}`);
+    } catch {
+      // an older core, or none yet: the stream alone, as before
+    }
+    const seen = new Set(backlog.map((msg) => JSON.stringify(msg)));
+    for (const msg of backlog) this.add(msg);
+    for (const msg of early) if (!seen.has(JSON.stringify(msg))) this.add(msg);
+    backlogShown = true;
   }
 
   add(msg) {

@@ -79,7 +79,7 @@ export class GraphTables {
       tr.className = "pickable";
       const rate = typeof topic.rate_hz === "number" ? topic.rate_hz.toFixed(1) : "–";
       const flow = `${topic.publishers.join(", ") || "∅"} → ${topic.subscribers.join(", ") || "∅"}`;
-      tr.append(cell(topic.name, "mono"), cell(shortType(topic.type), "dim"), cell(rate, "num"), cell(flow, "dim small-text"));
+      tr.append(cell(topic.name, "mono"), cell(shortType(topic.type), "dim type"), cell(rate, "num"), cell(flow, "dim small-text flow"));
       tr.addEventListener("click", () => this.onPick(topic.name));
       return tr;
     });
@@ -94,7 +94,7 @@ export class GraphTables {
       tr.dataset.type = service.type;
       tr.title = `call ${service.name} (${service.type})`;
       tr.className = "pickable";
-      tr.append(cell(service.name, "mono"), cell(shortType(service.type), "dim"), cell(service.node, "dim"));
+      tr.append(cell(service.name, "mono"), cell(shortType(service.type), "dim type"), cell(service.node, "dim"));
       tr.addEventListener("click", () => this.onPick(service.name));
       return tr;
     });

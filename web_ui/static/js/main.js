@@ -1,5 +1,6 @@
 // Wires the dashboard together and exposes a read-only debug hook on `window.skydeck`.
 
+import { ActionsPanel } from "./actions.js";
 import { socketStates, updatePublished } from "./api.js";
 import { initTokenButton } from "./auth.js";
 import { CameraView } from "./camera.js";
@@ -19,6 +20,7 @@ import { StatusBanner } from "./status.js";
 import { Tabs } from "./tabs.js";
 import { Teleop } from "./teleop.js";
 import { View3DLoader } from "./view3d/loader.js";
+import { WindowsView } from "./windows.js";
 import { DRONE_TOPICS, World } from "./world.js";
 
 const $ = (id) => document.getElementById(id);
@@ -31,8 +33,10 @@ const tabs = new Tabs(document.querySelector(".tabs"));
 // The main view: the 2D map or the 3D view (remembered across reloads).
 const viewTabs = new Tabs($("map-panel"));
 const view3d = new View3DLoader($("view3d"));
+const windows = new WindowsView({ tab: $("windows-tab"), list: $("windows-list"), empty: $("windows-empty") });
 viewTabs.addEventListener("change", () => {
   view3d.setShown(viewTabs.current === "view3d");
+  windows.setShown(viewTabs.current === "windows");
   localStorage.setItem("skydeck.view", viewTabs.current);
 });
 
@@ -102,6 +106,7 @@ const layersPanel = new LayersPanel({
   list: $("layer-list"),
 });
 const parameters = new ParametersPanel({ node: $("param-node"), table: $("param-list"), result: $("param-result"), refresh: $("param-refresh") });
+const actions = new ActionsPanel({ table: $("action-list"), empty: $("action-empty") });
 
 graph.addEventListener("update", () => {
   commands.updateGraph(graph.graph);
@@ -113,7 +118,9 @@ graph.addEventListener("update", () => {
   inspector.updateGraph(graph.graph);
   layersPanel.updateGraph(graph.graph);
   parameters.updateGraph(graph.graph);
+  actions.updateGraph(graph.graph);
   view3d.updateGraph(graph.graph);
+  windows.updateGraph(graph.graph);
 });
 function expandGraph(expanded) {
   const button = $("graph-expand");
@@ -128,6 +135,7 @@ window.addEventListener("keydown", (event) => {
 tabs.addEventListener("change", () => {
   if (tabs.current === "graph" && graph.graph) diagram.render(graph.graph);
   parameters.setVisible(tabs.current === "parameters");
+  actions.setVisible(tabs.current === "actions");
 });
 
 const teleop = new Teleop({
@@ -170,7 +178,7 @@ world.addEventListener("ai-status", renderMission);
 
 initTokenButton($("token-button"));
 tabs.show("topics");
-viewTabs.show(localStorage.getItem("skydeck.view") === "view3d" ? "view3d" : "map");
+viewTabs.show(["view3d", "windows"].includes(localStorage.getItem("skydeck.view")) ? localStorage.getItem("skydeck.view") : "map");
 world.start();
 graph.start();
 layers.restore();
@@ -269,6 +277,10 @@ window.skydeck = Object.freeze({
   get parameters() {
     return { node: parameters.node, rows: copy(parameters.rows), last: copy(parameters.last) };
   },
+  /** The Actions tab's rows (while it is shown): [{action, type, goal, status, feedback}]. */
+  get actions() {
+    return actions.snapshot();
+  },
   get recorder() {
     return { recording: recorder.recording, current: copy(recorder.current), files: copy(recorder.files), error: recorder.error };
   },
@@ -277,6 +289,12 @@ window.skydeck = Object.freeze({
   /** Client (page) coordinates of map point (x, y): where to click to fly there. */
   worldToClient: (x, y) => map.worldToClient(x, y),
   clientToWorld: (x, y) => map.clientToWorld(x, y),
+  /** The OpenCV windows of programs (the Windows tab): per window its description, frames shown, sliders, input sent. */
+  get windows() {
+    return windows.snapshot();
+  },
+  /** Client (page) coordinates of pixel (x, y) of the window whose image topic is `topic` (null if none). */
+  windowPoint: (topic, x, y) => windows.panel(topic)?.clientPoint(x, y) ?? null,
   /** The 3D view: fixed frame, frames, camera, world, displays (what each draws, in the fixed frame), frame times. */
   view3d: (options) => view3d.snapshot(options),
 });
@@ -285,9 +303,11 @@ function renderLegendLayers() {
   const box = $("legend-layers");
   box.replaceChildren();
   for (const layer of layers.list()) {
+    const item = document.createElement("span");
     const swatch = document.createElement("i");
     swatch.style.background = layer.color;
-    box.append(swatch, document.createTextNode(layer.topic));
+    item.append(swatch, document.createTextNode(layer.topic));
+    box.append(item);
   }
 }
 layers.addEventListener("change", renderLegendLayers);

@@ -31,7 +31,7 @@ export class World extends EventTarget {
     this.controlState = null;
     this.droneState = null;
     this.flyTarget = null; // the last clicked target {x, y}
-    this.kind = null; // "drone" | "robot" (a world's name) once /simulator/world has said; null before
+    this.kind = null; // "drone" | "robot" (a world's name, or the world's it extends) once /simulator/world has said; null before
     this.namespaces = []; // the robot world's robots: ["/"] or ["/robot1", "/robot2", ...]
     this._speedRef = null; // an earlier pose to differentiate against
     this._worldSocket = null;
@@ -90,7 +90,9 @@ export class World extends EventTarget {
   }
 
   _onWorld(msg) {
-    const kind = typeof msg.world === "string" && msg.world ? msg.world : "drone";
+    const named = typeof msg.world === "string" && msg.world ? msg.world : "drone";
+    // A world built on another (the soccer room on the robot world) is shown as that one.
+    const kind = (config.worlds[named] && config.worlds[named].extends) || named;
     const namespaces = Array.isArray(msg.namespaces) ? msg.namespaces.filter((ns) => typeof ns === "string") : [];
     if (kind === this.kind && namespaces.join() === this.namespaces.join()) return;
     this.kind = kind;

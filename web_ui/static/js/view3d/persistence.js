@@ -32,7 +32,9 @@ export function checkDocument(doc, knownType) {
     const c = doc.camera;
     const vector = (v) => Array.isArray(v) && v.length === 3 && v.every(Number.isFinite);
     if (c && vector(c.position) && vector(c.target)) {
-      settings.camera = { position: c.position, target: c.target, follow: c.follow === true };
+      // `world`: which world the view was on ("drone", "robot"); another one is framed afresh.
+      const world = c.world === "drone" || c.world === "robot" ? c.world : null;
+      settings.camera = { position: c.position, target: c.target, follow: c.follow === true, world };
     } else {
       warnings.push("camera is not {position: [x, y, z], target: [x, y, z]}: the default view is used");
     }

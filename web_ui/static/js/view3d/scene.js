@@ -80,9 +80,11 @@ function percentiles(values) {
 
 export class Scene3D {
   /** `onTick(now)` runs every animation frame while shown; it returns true when it changed the scene. */
-  constructor(canvas, { onTick }) {
+  /** `onResize()` runs when the canvas changes size (after the camera's aspect follows it). */
+  constructor(canvas, { onTick, onResize = () => {} }) {
     this.canvas = canvas;
     this.onTick = onTick;
+    this.onResize = onResize;
     this.software = softwareRendering();
     this.renderer = new THREE.WebGLRenderer({ canvas, antialias: !this.software });
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
@@ -185,6 +187,81 @@ export class Scene3D {
     this.setCamera([target.x, target.y - height * 1e-3, target.z + height], [target.x, target.y, target.z]);
   }
 
+  /**
+   * Look at `box` (a THREE.Box3 in the fixed frame) from the south-west and above, as close as
+   * keeps all of it in view: the world fills the canvas (`fill` of its half-width or half-height
+   * from the centre, the tighter of the two). Perspective draws the near side larger, so the orbit
+   * target (on the box's floor) slides along the view until the box sits in the middle of the
+   * canvas, as much above the centre as below.
+   */
+  frameBox(box, { azimuth = -Math.PI * 0.75, elevation = 0.62, fill = 0.94 } = {}) {
+    const centre = box.getCenter(new THREE.Vector3()).setZ(box.min.z);
+    const ahead = new THREE.Vector3(Math.cos(azimuth), Math.sin(azimuth), 0).negate(); // away from the camera
+    const direction = new THREE.Vector3(
+      Math.cos(azimuth) * Math.cos(elevation),
+      Math.sin(azimuth) * Math.cos(elevation),
+      Math.sin(elevation),
+    );
+    const corners = [];
+    for (const x of [box.min.x, box.max.x])
+      for (const y of [box.min.y, box.max.y]) for (const z of [box.min.z, box.max.z]) corners.push(new THREE.Vector3(x, y, z));
+    const probe = this.camera.clone();
+    const extent = (target, distance) => {
+      probe.position.copy(target).addScaledVector(direction, distance);
+      probe.lookAt(target);
+      probe.updateMatrixWorld(true);
+      let [left, right, bottom, top] = [Infinity, -Infinity, Infinity, -Infinity];
+      for (const corner of corners) {
+        const ndc = corner.clone().project(probe);
+        if (ndc.z >= 1) return null; // behind the camera
+        [left, right, bottom, top] = [Math.min(left, ndc.x), Math.max(right, ndc.x), Math.min(bottom, ndc.y), Math.max(top, ndc.y)];
+      }
+      return { left, right, bottom, top };
+    };
+    const fits = (e) => e !== null && Math.max(-e.left, e.right, -e.bottom, e.top) <= fill;
+    // The nearest distance at which the box fits (fitting only gets easier further away).
+    const nearest = (target) => {
+      let [near, far] = [0.1, 10];
+      while (!fits(extent(target, far)) && far < 1e5) far *= 2;
+      for (let i = 0; i < 40; i++) {
+        const mid = (near + far) / 2;
+        if (fits(extent(target, mid))) far = mid;
+        else near = mid;
+      }
+      return far;
+    };
+    // Slide the target until the box is as far above the centre as below (bisection: sliding it
+    // away from the camera lowers the box on the canvas).
+    const reach = box.getSize(new THREE.Vector3()).length();
+    let [back, forth] = [-reach, reach];
+    let target = centre.clone();
+    for (let i = 0; i < 30; i++) {
+      const shift = (back + forth) / 2;
+      target = centre.clone().addScaledVector(ahead, shift);
+      const e = extent(target, nearest(target));
+      if (e.top + e.bottom > 0) back = shift;
+      else forth = shift;
+    }
+    const distance = nearest(target);
+    this.setCamera(target.clone().addScaledVector(direction, distance).toArray(), target.toArray());
+  }
+
+  /** Canvas pixels per metre at `point`, at its distance from the camera (the view's scale there). */
+  pixelsPerMetre(point) {
+    const distance = Math.max(this.camera.position.distanceTo(point), 1e-3);
+    const height = this.canvas.clientHeight || this.canvas.height;
+    return height / (2 * distance * Math.tan(THREE.MathUtils.degToRad(this.camera.fov / 2)));
+  }
+
+  /** Bring the camera to `distance` metres from the orbit target, looking from where it looks now. */
+  approach(distance) {
+    const offset = this.camera.position.clone().sub(this.controls.target);
+    if (offset.length() <= distance) return;
+    this.camera.position.copy(this.controls.target).addScaledVector(offset.normalize(), distance);
+    this.controls.update();
+    this.invalidate();
+  }
+
   /** Move the orbit target to `point`, carrying the camera along (the follow view). */
   follow(point) {
     const target = this.controls.target;
@@ -217,8 +294,11 @@ export class Scene3D {
     this.renderer.setSize(rect.width, rect.height, false);
     this.canvas.style.width = `${rect.width}px`;
     this.canvas.style.height = `${rect.height}px`;
-    this.camera.aspect = rect.width / rect.height;
+    const aspect = rect.width / rect.height;
+    if (Math.abs(aspect - this.camera.aspect) < 1e-3) return;
+    this.camera.aspect = aspect;
     this.camera.updateProjectionMatrix();
     this.invalidate();
+    this.onResize();
   }
 }

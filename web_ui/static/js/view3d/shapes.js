@@ -28,6 +28,18 @@ export function unitGeometry() {
   return unit;
 }
 
+/**
+ * Set `object`'s scale to `factor` along the axes `axes` marks with 1 (others stay 1); true if it
+ * changed by more than 1 % (a model kept a few pixels across: no redraw for less).
+ */
+export function fitScale(object, factor, axes) {
+  const wanted = axes.map((on) => (on ? factor : 1));
+  const current = object.scale.toArray();
+  if (wanted.every((w, i) => Math.abs(w - current[i]) <= 0.01 * current[i])) return false;
+  object.scale.fromArray(wanted);
+  return true;
+}
+
 export function solidMaterial(color, opacity = 1) {
   return new THREE.MeshLambertMaterial({ color, transparent: opacity < 1, opacity, depthWrite: opacity >= 1 });
 }

@@ -13,6 +13,9 @@ import { TfTree } from "./tf_tree.js";
 import { SimWorld } from "./world/index.js";
 
 const SAVE_DELAY_MS = 300;
+// The drone and the robots are drawn at least this wide on the canvas: at their true size close
+// up, larger when the whole world is in view (a 0.55 m drone in a 30 m arena is a few pixels).
+const MIN_MODEL_PX = 40;
 const TF_QUEUE = 1000; // /tf is read whole (every edge matters); the core's queue bounds it
 
 export class View3D {
@@ -20,20 +23,36 @@ export class View3D {
     this.el = elements;
     this.tf = new TfTree();
     this.displays = new Map(); // topic -> Display
-    this.scene = new Scene3D(elements.canvas, { onTick: (now) => this._tick(now) });
+    this.scene = new Scene3D(elements.canvas, {
+      onTick: (now) => this._tick(now),
+      // Framed for another shape of canvas (framed while hidden, or the window resized): frame
+      // again, unless the user has moved the camera since.
+      onResize: () => this._framedUntouched && this.frameWorld({ auto: true }),
+    });
     this.world = new SimWorld(config.worlds, this.tf);
     this.scene.add(this.world.root);
     this.fixedFrameChoice = null; // the user's, or null: the tree's default
     this.fixedFrame = null; // what the last frame used
     this.follow = false;
+    this._approach = false; // Follow was switched on: bring the camera close at the next frame
+    // Which world the camera was set up for (framed, restored, or moved by the user in it): a
+    // world that appears and is not that one is framed, so the view opens on it.
+    this._cameraWorld = null;
+    this._userMoved = false;
+    this._framedUntouched = false; // the camera is as the view framed it by itself
     this._seen = { tf: -1, structure: -1 };
     this._sockets = [];
     this._saveTimer = 0;
     this._cameraMoved = false;
     this.panel = new DisplaysPanel(this, elements);
     elements.top.addEventListener("click", () => this.topDown());
-    elements.followButton.addEventListener("click", () => this.setFollow(!this.follow));
+    elements.followButton.addEventListener("click", () => this.setFollow(!this.follow, { approach: true }));
     elements.reset.addEventListener("click", () => this.resetCamera());
+    this.scene.controls.addEventListener("start", () => {
+      this._userMoved = true;
+      this._framedUntouched = false;
+      this._cameraWorld = this.world.kind() ?? this._cameraWorld;
+    });
     this.scene.controls.addEventListener("end", () => this._save());
     // A change made just before a reload or a closed tab is kept: the pending save is written now.
     window.addEventListener("pagehide", () => this._flushSave());
@@ -138,19 +157,44 @@ export class View3D {
 
   topDown() {
     this.setFollow(false);
+    this._framedUntouched = false;
     const target = this.world.followPoint() || new THREE.Vector3();
     this.scene.topDown(new THREE.Vector3(target.x, target.y, 0), this.world.extent() * 2.2);
     this._save();
   }
 
+  /** The world framed (Reset view; Follow stops); before any world is known, a guess from the side. */
   resetCamera() {
+    this.setFollow(false);
+    if (this.world.kind()) {
+      this.frameWorld();
+      return;
+    }
     const r = this.world.extent();
     this.scene.setCamera([-1.1 * r, -1.1 * r, 0.9 * r], [0, 0, 0]);
     this._save();
   }
 
-  setFollow(follow) {
+  /** Fill the canvas with the world the simulator runs (its arena, or its room), seen from above
+   * the south-west corner, as the view opens. */
+  frameWorld({ auto = false } = {}) {
+    const kind = this.world.kind();
+    if (!kind) return;
+    const bounds = this.world.bounds();
+    const map = new THREE.Matrix4();
+    const found = this.tf.lookup(this.effectiveFixedFrame(), "map", null, map);
+    if (!found.error) bounds.applyMatrix4(map);
+    this.scene.frameBox(bounds);
+    this._cameraWorld = kind;
+    this._framedUntouched = auto;
+    this._save();
+  }
+
+  /** Follow the robot (or drone); `approach`: bring the camera close to it too (the button). */
+  setFollow(follow, { approach = false } = {}) {
     this.follow = follow;
+    if (follow) this._framedUntouched = false;
+    this._approach = follow && approach;
     this.el.followButton.setAttribute("aria-pressed", String(follow));
     this._save();
   }
@@ -160,7 +204,7 @@ export class View3D {
   document() {
     return settingsDocument({
       fixedFrame: this.fixedFrameChoice,
-      camera: { ...this.scene.cameraState(), follow: this.follow },
+      camera: { ...this.scene.cameraState(), follow: this.follow, world: this._cameraWorld },
       grid: this.scene.grid.visible,
       world: this.world.visible,
       displays: [...this.displays.values()].map((d) => d.settings()),
@@ -205,6 +249,8 @@ export class View3D {
     if (settings.camera) {
       this.scene.setCamera(settings.camera.position, settings.camera.target);
       this.setFollow(settings.camera.follow);
+      this._cameraWorld = settings.camera.world;
+      this._framedUntouched = false;
     }
     this.scene.grid.visible = settings.grid;
     this.world.setVisible(settings.world);
@@ -247,10 +293,20 @@ export class View3D {
         display.setStatus("Error", "error", `internal error: ${error.message}`);
       }
     }
+    const kind = this.world.kind();
+    if (kind && kind !== this._cameraWorld) {
+      if (this._userMoved && this._cameraWorld === null) this._cameraWorld = kind; // moved before: kept
+      else this.frameWorld({ auto: true });
+    }
     if (this.follow) {
       const point = this.world.followPoint();
-      if (point) this.scene.follow(point);
+      if (point) {
+        this.scene.follow(point);
+        if (this._approach) this.scene.approach(this.world.followDistance());
+        this._approach = false;
+      }
     }
+    if (this.world.fitModels((point) => this.scene.pixelsPerMetre(point), MIN_MODEL_PX)) changed = true;
     const extent = this.world.extent();
     this.scene.setGrid(Math.ceil(extent * 2.5), 1);
     this.scene.fixedAxes.scale.setScalar(Math.max(0.3, extent / 10));
@@ -272,7 +328,13 @@ export class View3D {
       fixedFrameChoice: this.fixedFrameChoice,
       globalStatus: this.globalStatus(),
       frames: this.tf.snapshot(),
-      camera: { ...this.scene.cameraState(), follow: this.follow },
+      camera: {
+        ...this.scene.cameraState(),
+        follow: this.follow,
+        world: this._cameraWorld,
+        fov: this.scene.camera.fov, // vertical, degrees
+        canvas: [this.el.canvas.clientWidth, this.el.canvas.clientHeight],
+      },
       world: this.world.snapshot(),
       grid: this.scene.grid.visible,
       axes: this.scene.axesState(),

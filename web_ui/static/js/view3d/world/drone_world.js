@@ -5,29 +5,47 @@
 import * as THREE from "three";
 import { TopicSocket } from "../../api.js";
 import { BadData, frameName, setPoseMatrix } from "../ros_math.js";
-import { disposeObject, solidMaterial, unitGeometry } from "../shapes.js";
+import { disposeObject, fitScale, solidMaterial, unitGeometry } from "../shapes.js";
 
 const COLORS = { ground: 0x141d26, arena: 0x3b4b5c, box: 0xa98552, boxEdge: 0xd9b27a, drone: 0x61afef, front: 0xffb74d };
 
-/** A quadrotor about the Iris's size (0.55 m motor to motor), arms in an x, the front marked. */
+const DRONE_SPAN_M = 0.55 + 0.24; // motor to motor, plus a rotor's diameter
+const SKID_DEPTH_M = 0.1; // from the body's centre to the bottom of its skids
+const FOLLOW_DISTANCE_M = 5; // Follow brings the camera this close: the drone about 70 px across
+const ARENA_HEIGHT_M = 3; // framed above the ground: the boxes and the drone at its altitude
+
+/** A quadrotor about the Iris's size (0.55 m motor to motor): a body with a nose, two arms in an
+ * x, a motor and a rotor disc at each end (the front two orange) and two landing skids. */
 function droneModel() {
   const group = new THREE.Group();
-  const { box, cylinder } = unitGeometry();
+  const { box, cylinder, sphere } = unitGeometry();
   const body = new THREE.Mesh(box, solidMaterial(COLORS.drone));
   body.scale.set(0.22, 0.14, 0.08);
-  group.add(body);
+  const nose = new THREE.Mesh(sphere, solidMaterial(COLORS.front));
+  nose.scale.set(0.06, 0.06, 0.05);
+  nose.position.set(0.12, 0, 0);
+  group.add(body, nose);
   const arm = solidMaterial(0x9aa7b4);
   for (const angle of [Math.PI / 4, -Math.PI / 4]) {
     const rod = new THREE.Mesh(box, arm);
-    rod.scale.set(0.55, 0.025, 0.02);
+    rod.scale.set(0.55, 0.03, 0.025);
     rod.rotation.z = angle;
     group.add(rod);
   }
   for (const [sx, sy] of [[1, 1], [1, -1], [-1, 1], [-1, -1]]) {
-    const rotor = new THREE.Mesh(cylinder, solidMaterial(sx > 0 ? COLORS.front : 0xd0d8e0, 0.7));
-    rotor.scale.set(0.24, 0.24, 0.01);
-    rotor.position.set(sx * 0.195, sy * 0.195, 0.04);
-    group.add(rotor);
+    const motor = new THREE.Mesh(cylinder, arm);
+    motor.scale.set(0.045, 0.045, 0.06);
+    motor.position.set(sx * 0.195, sy * 0.195, 0.02);
+    const rotor = new THREE.Mesh(cylinder, solidMaterial(sx > 0 ? COLORS.front : 0xd0d8e0, 0.75));
+    rotor.scale.set(0.24, 0.24, 0.012);
+    rotor.position.set(sx * 0.195, sy * 0.195, 0.055);
+    group.add(motor, rotor);
+  }
+  for (const side of [1, -1]) {
+    const skid = new THREE.Mesh(box, arm);
+    skid.scale.set(0.24, 0.015, 0.015);
+    skid.position.set(0, side * 0.08, -0.09);
+    group.add(skid);
   }
   return group;
 }
@@ -62,7 +80,11 @@ export class DroneWorld {
     );
     outline.computeLineDistances();
     this.boxes = new THREE.Group();
-    this.drone = droneModel();
+    // The pose goes on this group; the model inside it is drawn at least MIN_MODEL_PX across
+    // (fitModel): at its true size close up, larger when the whole arena is in view.
+    this.drone = new THREE.Group();
+    this.model = droneModel();
+    this.drone.add(this.model);
     this.drone.matrixAutoUpdate = false;
     this.drone.visible = false;
     // A line from the drone down to the ground: height is hard to judge in a perspective view.
@@ -152,6 +174,26 @@ export class DroneWorld {
     return this.arena.fly_half_size_m;
   }
 
+  /** What the view frames at open: the arena the boxes lie in, up to above a flying drone. */
+  bounds() {
+    const half = this.arena.arena_half_size_m;
+    return new THREE.Box3(new THREE.Vector3(-half, -half, 0), new THREE.Vector3(half, half, ARENA_HEIGHT_M));
+  }
+
+  followDistance() {
+    return FOLLOW_DISTANCE_M;
+  }
+
+  /** Scale the model so that it is at least `minPx` across where it is; true if that changed. */
+  fitModel(pixelsPerMetre, minPx) {
+    if (!this.drone.visible) return false;
+    this.root.updateMatrixWorld(true);
+    const at = new THREE.Vector3().setFromMatrixPosition(this.drone.matrixWorld);
+    const changed = fitScale(this.model, Math.max(1, minPx / (DRONE_SPAN_M * pixelsPerMetre(at))), [1, 1, 1]);
+    this.model.position.z = (this.model.scale.z - 1) * SKID_DEPTH_M; // grown from its skids: never into the ground
+    return changed;
+  }
+
   snapshot() {
     this.root.updateMatrixWorld(true);
     const at = (object) => new THREE.Vector3().setFromMatrixPosition(object.matrixWorld).toArray().map((v) => Math.round(v * 1000) / 1000);
@@ -159,6 +201,7 @@ export class DroneWorld {
       present: this.present,
       frame: this.frame,
       drone: this.drone.visible ? at(this.drone) : null,
+      droneScale: Math.round(this.model.scale.x * 1000) / 1000, // drawn size / true size
       boxes: this.boxes.children.map(at),
     };
   }

@@ -89,15 +89,40 @@ export class SimWorld {
     return this.robot.followPoint() || (this.drone && this.drone.present ? this.drone.followPoint() : null);
   }
 
-  /** Half the size of the world shown, in metres (grid and the reset view). */
+  /** Half the size of the world shown, in metres (grid and the top-down view). */
   extent() {
     if (this.robot.present || !this.drone) return this.robot.extent();
     return this.drone.extent();
   }
 
+  /** Which world the simulator runs, once its topics or frames say so: "robot", "drone" or null. */
+  kind() {
+    if (this.robot.present) return "robot";
+    return this.drone && this.drone.present ? "drone" : null;
+  }
+
+  /** What the view frames (a THREE.Box3 in the world's frame, `map`), for kind(). */
+  bounds() {
+    return this.kind() === "drone" ? this.drone.bounds() : this.robot.bounds();
+  }
+
+  /** How close Follow brings the camera, in metres. */
+  followDistance() {
+    return this.kind() === "drone" ? this.drone.followDistance() : this.robot.followDistance();
+  }
+
+  /** Draw the drone and the robots at least `minPx` across (`pixelsPerMetre(point)`: the view's
+   * scale at a point); true if a model's size changed. */
+  fitModels(pixelsPerMetre, minPx) {
+    if (!this.visible) return false;
+    const drone = this.drone ? this.drone.fitModel(pixelsPerMetre, minPx) : false;
+    return this.robot.fitModels(pixelsPerMetre, minPx) || drone;
+  }
+
   snapshot() {
     return {
       visible: this.visible,
+      kind: this.kind(),
       status: this.status(),
       drone: this.drone ? this.drone.snapshot() : null,
       robot: this.robot.snapshot(),

@@ -8,24 +8,42 @@ import * as THREE from "three";
 import { TopicSocket } from "../../api.js";
 import { MarkerDisplay } from "../displays/markers.js";
 import { BadData, frameName, setPoseMatrix } from "../ros_math.js";
-import { disposeObject, solidMaterial, unitGeometry } from "../shapes.js";
+import { disposeObject, fitScale, solidMaterial, unitGeometry } from "../shapes.js";
 
 const COLORS = { robot: 0x61afef, front: 0xffb74d, laser: 0x2b2f36, person: 0xe5c07b };
 const ROBOT_HEIGHT_M = 0.09;
 const PERSON_HEIGHT_M = 1.7; // what is drawn above the legs the laser sees: a person, to scale
 const BASE = /(^|\/)base_link$/;
 
-/** A round robot, its front marked by a bar along +x. */
+const FOLLOW_DISTANCE_M = 2.2; // Follow brings the camera this close: the robot about 65 px across
+const WALL_HEIGHT_M = 0.5; // framed above the floor: the walls and the person's legs
+
+/** A round robot as a Neato seen from above: its body, a bumper ring round the front half, and
+ * an arrow on top pointing where it drives (+x). */
 function robotModel(radius) {
   const group = new THREE.Group();
-  const { cylinder, box } = unitGeometry();
+  const { cylinder } = unitGeometry();
   const body = new THREE.Mesh(cylinder, solidMaterial(COLORS.robot));
   body.scale.set(2 * radius, 2 * radius, ROBOT_HEIGHT_M);
   body.position.z = ROBOT_HEIGHT_M / 2;
-  const front = new THREE.Mesh(box, solidMaterial(COLORS.front));
-  front.scale.set(0.1, 0.04, 0.02);
-  front.position.set(radius - 0.06, 0, ROBOT_HEIGHT_M + 0.01);
-  group.add(body, front);
+  const bumper = new THREE.Mesh(
+    new THREE.CylinderGeometry(radius + 0.012, radius + 0.012, ROBOT_HEIGHT_M * 0.5, 24, 1, true, Math.PI / 2, Math.PI).rotateX(Math.PI / 2),
+    solidMaterial(0x2b2f36),
+  );
+  bumper.material.side = THREE.DoubleSide;
+  bumper.position.z = ROBOT_HEIGHT_M * 0.35;
+  const arrow = new THREE.Mesh(
+    new THREE.ShapeGeometry(
+      new THREE.Shape([
+        new THREE.Vector2(radius * 0.85, 0), // clear of the laser turret in the middle
+        new THREE.Vector2(radius * 0.3, radius * 0.42),
+        new THREE.Vector2(radius * 0.3, -radius * 0.42),
+      ]),
+    ),
+    solidMaterial(COLORS.front),
+  );
+  arrow.position.z = ROBOT_HEIGHT_M + 0.002;
+  group.add(body, bumper, arrow);
   return group;
 }
 
@@ -138,8 +156,12 @@ export class RobotWorld {
   _placeRobots(ctx) {
     for (const frame of this.tf.frames()) {
       if (BASE.test(frame) && !this.robots.has(frame)) {
+        // The pose goes on `body`; the model inside is drawn at least MIN_MODEL_PX across
+        // (fitModels), wider only: its height and the laser on top stay as they are.
+        const model = robotModel(this.room.robot_radius_m);
         const robot = {
-          body: robotModel(this.room.robot_radius_m),
+          body: new THREE.Group().add(model),
+          model,
           laser: laserModel(),
           laserFrame: frame.replace(BASE, "$1base_laser_link"),
         };
@@ -171,6 +193,28 @@ export class RobotWorld {
     return this.room.room_half_size_m + 1;
   }
 
+  /** What the view frames at open: the room, walls included. */
+  bounds() {
+    const half = this.room.room_half_size_m + this.room.wall_thickness_m;
+    return new THREE.Box3(new THREE.Vector3(-half, -half, 0), new THREE.Vector3(half, half, WALL_HEIGHT_M));
+  }
+
+  followDistance() {
+    return FOLLOW_DISTANCE_M;
+  }
+
+  /** Widen each robot's model to at least `minPx` across where it is; true if any changed. */
+  fitModels(pixelsPerMetre, minPx) {
+    let changed = false;
+    for (const robot of this.robots.values()) {
+      if (!robot.body.visible) continue;
+      const at = new THREE.Vector3().setFromMatrixPosition(robot.body.matrix);
+      const factor = Math.max(1, minPx / (2 * this.room.robot_radius_m * pixelsPerMetre(at)));
+      changed = fitScale(robot.model, factor, [1, 1, 0]) || changed;
+    }
+    return changed;
+  }
+
   status() {
     return this.obstacles.status();
   }
@@ -180,6 +224,7 @@ export class RobotWorld {
     const robots = [...this.robots].map(([frame, r]) => ({
       frame,
       position: r.body.visible ? at(r.body) : null,
+      scale: Math.round(r.model.scale.x * 1000) / 1000, // drawn width / true width
       laser: r.laser.visible ? at(r.laser) : null,
     }));
     const first = robots.find((r) => r.position) || null;
