@@ -2,7 +2,8 @@
 
     skydeck run sim --world robot [--robots N] [--obstacles K] [--seed S] [--speed F|max]
 
-Per robot, under its namespace (none with one robot; ``/robot1``, ``/robot2``... with more):
+Per robot, under its namespace (none with one robot; ``/robot1``, ``/robot2``... with more; a
+class's ``/NAME`` per student, ``SKYDECK_SIM_STUDENTS=alice,bob`` as ``skydeck class`` sets it):
 follows ``cmd_vel`` (geometry_msgs/Twist, body frame; 0.5 s without one stops it), publishes
 ``odom`` (nav_msgs/Odometry, 30 Hz), ``bump`` (neato2_interfaces/Bump, 30 Hz) and ``scan``
 (sensor_msgs/LaserScan, 5 Hz). For everyone: ``/tf`` (odom -> base_link of each robot, 30 Hz),
@@ -104,7 +105,9 @@ class _RobotTopics:
 
 
 def _build_world(sim: RobotSettings) -> RobotWorld:
-    return RobotWorld(RobotWorldConfig(seed=sim.seed, robots=sim.robots, obstacles=sim.obstacles))
+    return RobotWorld(
+        RobotWorldConfig(seed=sim.seed, robots=sim.robots, obstacles=sim.obstacles, students=sim.student_names)
+    )
 
 
 class RobotSimNode(WorldNode[RobotSettings]):
@@ -122,7 +125,8 @@ class RobotSimNode(WorldNode[RobotSettings]):
         super().__init__(sim or RobotSettings(), settings, build)
         self.world: RobotWorld
         world = self.world
-        self.namespaces = robot_namespaces(world.robot_count)
+        students = world.config.students
+        self.namespaces = [f"/{name}" for name in students] if students else robot_namespaces(world.robot_count)
         self.robots = [_RobotTopics(self, i, ns) for i, ns in enumerate(self.namespaces)]
         self.tf_publisher = self.create_publisher(TFMessage, "/tf", 100)
         self.tf_static_publisher = self.create_publisher(TFMessage, "/tf_static", 1, latched=True)
