@@ -32,6 +32,9 @@ def add_parsers(subparsers: argparse._SubParsersAction[argparse.ArgumentParser])
     core.add_argument(
         "--class-rules", type=Path, metavar="FILE", help="the class's rules: what students share (YAML); docs/security.md"
     )
+    core.add_argument(
+        "--class-gradebook", type=Path, metavar="FILE", help="the grades the class page shows (`skydeck grade --class`'s JSON)"
+    )
     core.set_defaults(func=_core)
 
     run = subparsers.add_parser(
@@ -99,7 +102,9 @@ def _core(args: argparse.Namespace) -> int:
     from services.protocols.settings import CoreProcessSettings
 
     ports = {endpoint.setting: getattr(args, endpoint.setting) for endpoint in ENDPOINTS}
-    classroom = {"class_tokens": args.class_tokens, "class_rules": args.class_rules}
+    classroom = {
+        "class_tokens": args.class_tokens, "class_rules": args.class_rules, "class_gradebook": args.class_gradebook,
+    }  # fmt: skip
     serve(CoreProcessSettings.from_flags(**_server_flags(args), **ports, **classroom))  # flags over SKYDECK_*
     return 0
 

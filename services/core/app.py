@@ -25,6 +25,7 @@ from starlette.types import Receive, Scope, Send
 from services.access import Verb
 from services.core.access import CoreAccess
 from services.core.api import router as api_router
+from services.core.classroom import router as class_router
 from services.core.core_node import CORE_NODE, CORE_NODE_PATH, CoreNode
 from services.core.endpoint_servers import EndpointServers, ServedEndpoint
 from services.core.gateway import Gateway
@@ -137,6 +138,7 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
     install_error_handlers(app)
     app.include_router(api_router)
     app.include_router(access_router)
+    app.include_router(class_router)
     app.include_router(recordings_router)
     app.include_router(parameter_server_router)
     app.include_router(rosout_router)

@@ -41,6 +41,8 @@ class NodeRecord:
     told: dict[str, tuple[tuple[str, str], ...]] = field(default_factory=dict)
     # The key the core forwards admitted calls to this node with (its session's; "" for none).
     key: str = field(default="", repr=False)
+    # When its counts last grew (monotonic): the class page's last message age.
+    last_published: float | None = None
 
 
 def _names(entities: list[Entity]) -> set[str]:
@@ -114,6 +116,8 @@ class Registry:
             rate = None
             if last is not None and now > last[1] and count >= last[0]:
                 rate = (count - last[0]) / (now - last[1])
+            if count and (last is None or count > last[0]):
+                record.last_published = now
             record.counters[topic] = (count, now, rate)
 
     def _index(self, description: NodeDescription) -> None:
