@@ -183,7 +183,11 @@ class RobotSimNode(WorldNode[RobotSettings]):
             bump = world.bump(robot.index)
             robot.bump.publish_built(partial(_bump_message, bump))
             if scanning:
-                robot.scan.publish_built(partial(_laser_scan, stamp, robot.laser_frame, world.scan(robot.index)))
+                # Rays are cast only for a scan someone reads: a class's idle robots cost none
+                # (docs/performance.md). An unread scan asked for later (GET) is cast then, from
+                # this tick's pose.
+                cast = partial(world.scan_from, *world.robot_pose(robot.index))
+                robot.scan.publish_built(partial(_laser_scan, stamp, robot.laser_frame, cast))
         self.tf_publisher.publish_built(lambda: TFMessage.model_validate({"transforms": transforms}))
         if steps % TRUTH_EVERY_STEPS == 0:
             header = {"stamp": stamp, "frame_id": "map"}
@@ -281,7 +285,7 @@ def _bump_message(bump: WorldBump) -> Bump:
     )
 
 
-def _laser_scan(stamp: dict[str, int], frame_id: str, ranges: list[float]) -> LaserScan:
+def _laser_scan(stamp: dict[str, int], frame_id: str, cast: Callable[[], list[float]]) -> LaserScan:
     return LaserScan.model_validate({
         "header": {"stamp": stamp, "frame_id": frame_id},
         "angle_min": 0.0,
@@ -291,5 +295,5 @@ def _laser_scan(stamp: dict[str, int], frame_id: str, ranges: list[float]) -> La
         "scan_time": _SCAN_PERIOD_S,
         "range_min": RANGE_MIN_M,
         "range_max": RANGE_MAX_M,
-        "ranges": ranges,
+        "ranges": cast(),
     })  # fmt: skip

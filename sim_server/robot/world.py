@@ -257,6 +257,11 @@ class RobotWorld(BulletWorld):
         """Robot ``robot``'s laser scan now: SCAN_BEAMS ranges, ranges[0] straight ahead."""
         return self._laser.scan(*self.robot_pose(robot))
 
+    def scan_from(self, x: float, y: float, yaw: float) -> list[float]:
+        """The scan a laser at base_link pose (x, y, yaw) sees in the room as it is now."""
+        self._check_open()
+        return self._laser.scan(x, y, yaw)
+
     def bump(self, robot: int) -> Bump:
         """Which parts of robot ``robot``'s bumper touch something other than the floor now."""
         self._check_open()
