@@ -18,7 +18,6 @@ import pytest
 
 from services.access import make_class_tokens, write_tokens
 from tests.conftest import free_port_block
-from tests.web_ui.conftest import open_dashboard
 from tests.web_ui.system import System
 
 pytestmark = [pytest.mark.browser, pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(150)]
