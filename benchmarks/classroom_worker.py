@@ -25,7 +25,7 @@ from typing import Any
 import httpx
 from websockets.asyncio.client import connect
 
-from benchmarks.sink import emit, percentile, wait_for_stop_async
+from benchmarks.sink import counting_window, emit, percentile, wait_for_stop_async
 from services.runtime import Node, NodeSettings
 from services.runtime.edge.links import stream_url
 from services.runtime.executor import run
@@ -107,15 +107,7 @@ async def dashboards(args: argparse.Namespace) -> None:
     everyone = [reader for group in readers.values() for reader in group] + [truth]
     tasks = [asyncio.create_task(reader.run(counting)) for reader in everyone]
     tasks.append(asyncio.create_task(_class_page(args.core, tokens["instructor"], counting, page_ms)))
-    await asyncio.sleep(args.warmup)
-    counting.set()
-    emit("READY", {})
-    started = time.monotonic()
-    await wait_for_stop_async()
-    wall = time.monotonic() - started
-    for task in tasks:
-        task.cancel()
-    await asyncio.gather(*tasks, return_exceptions=True)
+    wall = await counting_window(tasks, counting, args.warmup)
     page_ms.sort()
     emit("RESULT", {
         "rates": {kind: [r.received / wall for r in group] for kind, group in readers.items()},

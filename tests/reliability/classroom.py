@@ -14,6 +14,7 @@ SDK's nodes; the clients are the tests' (httpx, websockets, roslibpy, @foxglove/
 from __future__ import annotations
 
 import asyncio
+import textwrap
 from collections.abc import AsyncIterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -31,6 +32,32 @@ from shared_models.std_srvs import Trigger, TriggerResponse
 from tests.conftest import CoreProcess, listening_socket, wait_until
 
 STUDENTS = ("alice", "bob")
+
+# A student's program as they write it (rclpy, unchanged): drives ahead on {topic} at 20 Hz.
+WALL_FOLLOWER = textwrap.dedent(
+    """
+    import rclpy
+    from rclpy.node import Node
+    from geometry_msgs.msg import Twist
+
+
+    class WallFollower(Node):
+        def __init__(self):
+            super().__init__("wall_follower")
+            self.cmd_vel = self.create_publisher(Twist, "{topic}", 10)
+            self.create_timer(0.05, self.tick)
+            self.get_logger().info("driving " + self.get_namespace())
+
+        def tick(self):
+            msg = Twist()
+            msg.linear.x = 0.3
+            self.cmd_vel.publish(msg)
+
+
+    rclpy.init()
+    rclpy.spin(WallFollower())
+    """
+)
 PROCESS_TOKEN = "the-instructors-processes-token"
 
 

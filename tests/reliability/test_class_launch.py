@@ -9,7 +9,6 @@ import json
 import math
 import os
 import sys
-import textwrap
 import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -19,33 +18,11 @@ import pytest
 
 from services.launch.background import BackgroundProcess
 from services.runtime.ports import free_port_block
+from tests.reliability.classroom import WALL_FOLLOWER
 
 pytestmark = [pytest.mark.e2e, pytest.mark.timeout(180)]
 
 REPO = Path(__file__).resolve().parents[2]
-DRIVER = textwrap.dedent(
-    """
-    import rclpy
-    from rclpy.node import Node
-    from geometry_msgs.msg import Twist
-
-
-    class Driver(Node):
-        def __init__(self):
-            super().__init__("driver")
-            self.cmd_vel = self.create_publisher(Twist, "cmd_vel", 10)
-            self.create_timer(0.1, self.tick)
-
-        def tick(self):
-            msg = Twist()
-            msg.angular.z = 1.0
-            self.cmd_vel.publish(msg)
-
-
-    rclpy.init()
-    rclpy.spin(Driver())
-    """
-)
 
 
 def wait_until_sync(predicate: Callable[[], bool], timeout_s: float, what: str) -> None:
@@ -106,15 +83,15 @@ def test_the_class_page_is_the_instructors(running: Class) -> None:
 
 def test_a_students_program_drives_their_robot_and_shows_in_the_table(running: Class) -> None:
     program = running.folder / "driver.py"
-    program.write_text(DRIVER)
+    program.write_text(WALL_FOLLOWER.format(topic="cmd_vel"))
     env = {**os.environ, "SKYDECK_CORE_URL": running.url, "SKYDECK_TOKEN": running.tokens["alice"]}
     driver = BackgroundProcess([sys.executable, "-m", "services.cli", "run", str(program)], name="alice", cwd=REPO, env=env)
     try:
-        bob_before = _pose(running, 1)
-        wait_until_sync(lambda: abs(_pose(running, 0)[2]) > 0.5, 60, "alice's robot to turn")
+        alice_before, bob_before = _pose(running, 0), _pose(running, 1)
+        wait_until_sync(lambda: _pose(running, 0)[0] > alice_before[0] + 0.2, 60, "alice's robot to drive ahead")
         table = running.get("/api/class").json()["students"]
         alice, bob = table
-        assert alice["nodes"] == ["/alice/driver"] and bob["nodes"] == []
+        assert alice["nodes"] == ["/alice/wall_follower"] and bob["nodes"] == []
         wait_until_sync(
             lambda: running.get("/api/class").json()["students"][0]["last_message_age_s"] is not None, 30, "alice's age"
         )

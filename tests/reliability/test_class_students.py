@@ -28,36 +28,12 @@ from services.runtime.edge.links import stream_url
 from shared_models.geometry_msgs import Twist, Vector3
 from shared_models.std_srvs import Trigger
 from tests.conftest import wait_until
-from tests.reliability.classroom import Classroom, open_classroom
+from tests.reliability.classroom import WALL_FOLLOWER, Classroom, open_classroom
 
 pytestmark = pytest.mark.timeout(90)
 
 REPO = Path(__file__).resolve().parents[2]
 
-WALL_FOLLOWER = textwrap.dedent(
-    """
-    import rclpy
-    from rclpy.node import Node
-    from geometry_msgs.msg import Twist
-
-
-    class WallFollower(Node):
-        def __init__(self):
-            super().__init__("wall_follower")
-            self.cmd_vel = self.create_publisher(Twist, "{topic}", 10)
-            self.create_timer(0.05, self.tick)
-            self.get_logger().info("driving " + self.get_namespace())
-
-        def tick(self):
-            msg = Twist()
-            msg.linear.x = 0.3
-            self.cmd_vel.publish(msg)
-
-
-    rclpy.init()
-    rclpy.spin(WallFollower())
-    """
-)
 
 
 @pytest.fixture

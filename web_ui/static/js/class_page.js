@@ -3,15 +3,9 @@
 // second while shown; clicking a student shows their topics (each opens in the Inspector).
 
 import { getJson } from "./api.js";
+import { cell } from "./graph.js";
 
 const POLL_MS = 1000;
-
-function cell(text, className) {
-  const td = document.createElement("td");
-  td.textContent = text;
-  if (className) td.className = className;
-  return td;
-}
 
 function age(seconds) {
   if (seconds == null) return "–";

@@ -40,7 +40,8 @@ export class GraphPoller extends EventTarget {
   }
 }
 
-function cell(text, className) {
+/** A table cell holding `text` (its class `className`, if given). */
+export function cell(text, className) {
   const td = document.createElement("td");
   td.textContent = text;
   if (className) td.className = className;
