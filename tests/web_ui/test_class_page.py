@@ -9,6 +9,7 @@ per student (alice, bob), both with the class's process token, as `skydeck class
 
 from __future__ import annotations
 
+import contextlib
 import json
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -18,6 +19,7 @@ import pytest
 
 from services.access import make_class_tokens, write_tokens
 from tests.conftest import free_port_block
+from tests.web_ui.conftest import Recorder
 from tests.web_ui.system import System
 
 pytestmark = [pytest.mark.browser, pytest.mark.e2e, pytest.mark.slow, pytest.mark.timeout(150)]
@@ -55,8 +57,19 @@ def classroom(tmp_path_factory: pytest.TempPathFactory) -> Iterator[ClassSystem]
         running.stop()
 
 
-def _signed_in(token: str) -> str:
-    return f"sessionStorage.setItem('skydeck.token', {json.dumps(token)})"
+@contextlib.contextmanager
+def _page(browser: object, classroom: ClassSystem, who: str) -> Iterator[tuple[object, Recorder]]:
+    """A fresh page on the class's dashboard at /#class, signed in with ``who``'s token."""
+    context = browser.new_context(viewport={"width": 1440, "height": 900})  # type: ignore[attr-defined]
+    context.add_init_script(f"sessionStorage.setItem('skydeck.token', {json.dumps(classroom.tokens[who])})")
+    try:
+        page = context.new_page()
+        recorder = Recorder()
+        recorder.attach(page)
+        page.goto(classroom.system.url + "/#class")
+        yield page, recorder
+    finally:
+        context.close()
 
 
 def test_the_instructor_sees_every_robot_the_table_and_a_students_topics(classroom: ClassSystem, browser) -> None:  # type: ignore[no-untyped-def]
@@ -64,15 +77,7 @@ def test_the_instructor_sees_every_robot_the_table_and_a_students_topics(classro
         "alice": {"score": 0.9, "passed": True, "criteria": [{"name": "in_band", "passed": True, "figure": "92%", "verdict": "ok"}]},
         "bob": {"score": 0.2, "passed": False, "criteria": [{"name": "no_collisions", "passed": False, "figure": "3 bumps", "verdict": "bumped"}]},
     }}))  # fmt: skip
-    context = browser.new_context(viewport={"width": 1440, "height": 900})
-    context.add_init_script(_signed_in(classroom.tokens["instructor"]))
-    try:
-        page = context.new_page()
-        errors: list[str] = []
-        urls: list[str] = []
-        page.on("pageerror", lambda error: errors.append(str(error)))
-        page.on("request", lambda request: urls.append(request.url))
-        page.goto(classroom.system.url + "/#class")
+    with _page(browser, classroom, "instructor") as (page, recorder):
         page.wait_for_function(
             "(() => { const c = window.skydeck && window.skydeck.classPage; return c && c.shown && c.rows.length === 2"
             " && c.scene && c.scene.robots.length === 2 && c.scene.robots.every(r => r.name) && c.scene.roomParts > 0; })()",
@@ -97,21 +102,13 @@ def test_the_instructor_sees_every_robot_the_table_and_a_students_topics(classro
         assert "no_collisions" in page.inner_text("#class-detail")
         page.click("#class-detail button:text('/bob/odom')")  # a topic opens in the Inspector
         page.wait_for_function("document.getElementById('inspect-name').value === '/bob/odom'", timeout=10_000)
-        assert errors == []
+        assert recorder.errors == []
         host = classroom.system.url.split("//")[1]
-        assert all(host in url or url.startswith(("data:", "blob:")) for url in urls), "no CDN: every file from the core"
-    finally:
-        context.close()
+        assert all(host in url or url.startswith(("data:", "blob:")) for url in recorder.urls), "no CDN: every file from the core"
 
 
 def test_a_students_dashboard_reads_only_what_their_token_may(classroom: ClassSystem, browser) -> None:  # type: ignore[no-untyped-def]
-    context = browser.new_context(viewport={"width": 1440, "height": 900})
-    context.add_init_script(_signed_in(classroom.tokens["alice"]))
-    try:
-        page = context.new_page()
-        sockets: list[str] = []
-        page.on("websocket", lambda websocket: sockets.append(websocket.url))
-        page.goto(classroom.system.url + "/#class")
+    with _page(browser, classroom, "alice") as (page, recorder):
         page.wait_for_function(
             "window.skydeck && window.skydeck.access && window.skydeck.access.role === 'student'"
             " && window.skydeck.room.robots.length === 1 && window.skydeck.room.robots[0].odom !== null",
@@ -123,10 +120,9 @@ def test_a_students_dashboard_reads_only_what_their_token_may(classroom: ClassSy
         topics = page.evaluate("window.skydeck.graph.topics.map(t => t.name)")
         assert "/alice/odom" in topics and "/clock" in topics
         assert not [t for t in topics if t.startswith("/bob/") or t == "/simulator/robots"]
-        assert not [url for url in sockets if "/bob/" in url or "/simulator/robots" in url]
+        assert not [url for url in recorder.urls if "/bob/" in url or "/simulator/robots" in url]
         assert page.evaluate("window.skydeck.teleop.topic") == "/alice/cmd_vel"
         refused = page.evaluate("window.skydeck.sockets().filter(s => s.state === 'closed').map(s => s.topic)")
         assert refused == []  # nothing was opened only to be refused
         assert page.locator("#token-dialog[open]").count() == 0
-    finally:
-        context.close()
+        assert recorder.errors == []
