@@ -10,24 +10,7 @@ too, so importing this module is not needed for it, unlike in ROS).
 
 from __future__ import annotations
 
-from services.ros.tf2_ros.do_transform import (
-    do_transform_point,
-    do_transform_polygon_stamped,
-    do_transform_pose,
-    do_transform_pose_stamped,
-    do_transform_pose_with_covariance_stamped,
-    do_transform_quaternion,
-    do_transform_vector3,
-    transform_covariance,
-)
+from services.ros.tf2_ros import do_transform
+from services.ros.tf2_ros.do_transform import *  # noqa: F403 (its __all__, listed once there)
 
-__all__ = [
-    "do_transform_point",
-    "do_transform_polygon_stamped",
-    "do_transform_pose",
-    "do_transform_pose_stamped",
-    "do_transform_pose_with_covariance_stamped",
-    "do_transform_quaternion",
-    "do_transform_vector3",
-    "transform_covariance",
-]
+__all__ = list(do_transform.__all__)

@@ -21,6 +21,7 @@ is in docs/ros.md.
 from __future__ import annotations
 
 from services.ros.errors import not_provided_attributes
+from services.ros.rospy import exceptions, log
 from services.ros.rospy.client import (
     init_node,
     myargv,
@@ -38,40 +39,9 @@ from services.ros.rospy.core import (
     resolve_name,
     signal_shutdown,
 )
-from services.ros.rospy.exceptions import (
-    ROSException,
-    ROSInitException,
-    ROSInternalException,
-    ROSInterruptException,
-    ROSSerializationException,
-    ROSTimeMovedBackwardsException,
-    ServiceException,
-    TransportException,
-)
+from services.ros.rospy.exceptions import *  # noqa: F403 (its __all__, listed once there)
 from services.ros.rospy.graph import get_published_topics
-from services.ros.rospy.log import (
-    DEBUG,
-    ERROR,
-    FATAL,
-    INFO,
-    WARN,
-    logdebug,
-    logdebug_once,
-    logdebug_throttle,
-    logerr,
-    logerr_once,
-    logerr_throttle,
-    logfatal,
-    logfatal_once,
-    logfatal_throttle,
-    loginfo,
-    loginfo_once,
-    loginfo_throttle,
-    logout,
-    logwarn,
-    logwarn_once,
-    logwarn_throttle,
-)
+from services.ros.rospy.log import *  # noqa: F403 (its __all__, listed once there)
 from services.ros.rospy.params import (
     delete_param,
     get_param,
@@ -88,29 +58,16 @@ from services.ros.rospy.topics import Publisher, Subscriber
 from shared_models.std_msgs import Header
 
 __all__ = [
-    "DEBUG",
-    "ERROR",
-    "FATAL",
-    "INFO",
-    "WARN",
     "Duration",
     "Header",
     "Publisher",
-    "ROSException",
-    "ROSInitException",
-    "ROSInternalException",
-    "ROSInterruptException",
-    "ROSSerializationException",
-    "ROSTimeMovedBackwardsException",
     "Rate",
     "Service",
-    "ServiceException",
     "ServiceProxy",
     "Subscriber",
     "Time",
     "Timer",
     "TimerEvent",
-    "TransportException",
     "delete_param",
     "get_caller_id",
     "get_name",
@@ -126,22 +83,6 @@ __all__ = [
     "is_initialized",
     "is_shutdown",
     "is_shutdown_requested",
-    "logdebug",
-    "logdebug_once",
-    "logdebug_throttle",
-    "logerr",
-    "logerr_once",
-    "logerr_throttle",
-    "logfatal",
-    "logfatal_once",
-    "logfatal_throttle",
-    "loginfo",
-    "loginfo_once",
-    "loginfo_throttle",
-    "logout",
-    "logwarn",
-    "logwarn_once",
-    "logwarn_throttle",
     "myargv",
     "on_shutdown",
     "resolve_name",
@@ -153,6 +94,8 @@ __all__ = [
     "wait_for_message",
     "wait_for_service",
 ]
+__all__ += exceptions.__all__
+__all__ += log.__all__
 
 # rospy names a course may meet that Skydeck does not have: one line each, not an AttributeError.
 _NOT_PROVIDED = frozenset(

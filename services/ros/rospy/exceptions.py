@@ -21,8 +21,7 @@ from __future__ import annotations
 
 from shared_models.errors import SkydeckError
 
-__all__ = [
-    "CoreUnreachableException",
+__all__ = [  # rospy's own names (what `from rospy import *` has of this module)
     "ROSException",
     "ROSInitException",
     "ROSInternalException",

@@ -15,7 +15,7 @@ from typing import Any
 from services.ros.rclpy.logging import LoggingSeverity
 from services.ros.rospy.core import logger
 
-__all__ = [
+__all__ = [  # rospy's own names (what `from rospy import *` has of this module)
     "DEBUG",
     "ERROR",
     "FATAL",
@@ -37,7 +37,6 @@ __all__ = [
     "logwarn",
     "logwarn_once",
     "logwarn_throttle",
-    "severity",
 ]
 
 # rospy's log levels (rosgraph_msgs/Log's constants), as init_node(log_level=...) takes them.

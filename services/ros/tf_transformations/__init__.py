@@ -15,72 +15,15 @@ themselves as not provided.
 from __future__ import annotations
 
 from services.ros.errors import not_provided_attributes
-from services.ros.tf_transformations.decomposition import compose_matrix, decompose_matrix
-from services.ros.tf_transformations.euler import (
-    euler_from_matrix,
-    euler_from_quaternion,
-    euler_matrix,
-    quaternion_from_euler,
-)
-from services.ros.tf_transformations.matrices import (
-    concatenate_matrices,
-    identity_matrix,
-    inverse_matrix,
-    is_same_transform,
-    random_vector,
-    rotation_from_matrix,
-    rotation_matrix,
-    scale_matrix,
-    translation_from_matrix,
-    translation_matrix,
-    unit_vector,
-    vector_norm,
-)
-from services.ros.tf_transformations.quaternions import (
-    quaternion_about_axis,
-    quaternion_conjugate,
-    quaternion_from_matrix,
-    quaternion_imag,
-    quaternion_inverse,
-    quaternion_matrix,
-    quaternion_multiply,
-    quaternion_real,
-    quaternion_slerp,
-    random_quaternion,
-    random_rotation_matrix,
-)
+from services.ros.tf_transformations import decomposition, euler, matrices, quaternions
 
-__all__ = [
-    "compose_matrix",
-    "concatenate_matrices",
-    "decompose_matrix",
-    "euler_from_matrix",
-    "euler_from_quaternion",
-    "euler_matrix",
-    "identity_matrix",
-    "inverse_matrix",
-    "is_same_transform",
-    "quaternion_about_axis",
-    "quaternion_conjugate",
-    "quaternion_from_euler",
-    "quaternion_from_matrix",
-    "quaternion_imag",
-    "quaternion_inverse",
-    "quaternion_matrix",
-    "quaternion_multiply",
-    "quaternion_real",
-    "quaternion_slerp",
-    "random_quaternion",
-    "random_rotation_matrix",
-    "random_vector",
-    "rotation_from_matrix",
-    "rotation_matrix",
-    "scale_matrix",
-    "translation_from_matrix",
-    "translation_matrix",
-    "unit_vector",
-    "vector_norm",
-]
+# One list of names per module, in its __all__.
+from services.ros.tf_transformations.decomposition import *  # noqa: F403
+from services.ros.tf_transformations.euler import *  # noqa: F403
+from services.ros.tf_transformations.matrices import *  # noqa: F403
+from services.ros.tf_transformations.quaternions import *  # noqa: F403
+
+__all__ = sorted({*decomposition.__all__, *euler.__all__, *matrices.__all__, *quaternions.__all__})
 
 _NOT_PROVIDED = frozenset(
     {
