@@ -24,6 +24,7 @@ import yaml
 
 from services.access import ClassTokensError, check_student_name
 from shared_models.errors import SkydeckError
+from sim_server.robot.limits import MAX_CLASS_ROBOTS  # pure constants: no PyBullet
 
 __all__ = ["CLASS_WORLDS", "ClassroomError", "Roster", "read_roster"]
 
@@ -63,7 +64,12 @@ def read_roster(path: Path) -> Roster:
             f"{path}: world {world!r}: a class runs in the robot world (a robot per student); "
             f"the drone world holds one drone. Write `world: robot` or leave it out"
         )
-    return Roster(_checked(path, names), world)
+    students = _checked(path, names)
+    if len(students) > MAX_CLASS_ROBOTS:
+        raise ClassroomError(
+            f"{path} names {len(students)} students; a room holds {MAX_CLASS_ROBOTS} robots: split the class in two"
+        )
+    return Roster(students, world)
 
 
 def _from_csv(path: Path, text: str) -> list[tuple[int, str]]:

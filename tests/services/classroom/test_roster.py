@@ -61,6 +61,12 @@ def test_a_roster_that_cannot_be_used_is_refused_in_one_line(tmp_path: Path, nam
     assert str(refused.value) == f"{tmp_path}/{said}"
 
 
+def test_a_roster_larger_than_a_room_is_refused(tmp_path: Path) -> None:
+    roster = _file(tmp_path, "big.csv", "".join(f"s{i}\n" for i in range(41)))
+    with pytest.raises(ClassroomError, match=r"big.csv names 41 students; a room holds 40 robots: split the class in two$"):
+        read_roster(roster)
+
+
 def test_skydeck_class_says_a_bad_roster_in_one_line_and_writes_no_tokens(tmp_path: Path) -> None:
     roster = _file(tmp_path, "students.csv", "alice\nbob\nalice\n")
     done = subprocess.run(
@@ -111,3 +117,15 @@ def test_the_launch_is_a_fenced_core_and_a_world_of_the_rosters_robots(tmp_path:
     assert tuple(core.args[core.args.index("--host") : core.args.index("--host") + 2]) == ("--host", "0.0.0.0")
     assert "--advertise-url" in core.args and "http://10.0.0.5:8001" in sim.args
     assert sim.env == {"SKYDECK_SIM_STUDENTS": "alice,bob"} and sim.args[:2] == ("--world", "robot")
+
+
+def test_skydeck_class_refuses_a_single_network_address_in_one_line_before_writing_tokens(tmp_path: Path) -> None:
+    roster = _file(tmp_path, "students.csv", "alice\nbob\n")
+    done = subprocess.run(
+        [sys.executable, "-m", "services.cli", "class", str(roster), "--host", "192.168.1.20", "--tokens", str(tmp_path / "t.csv")],
+        cwd=REPO, capture_output=True, text=True, timeout=50,
+    )  # fmt: skip
+    assert done.returncode == 1
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("skydeck: error: --host 192.168.1.20: a class listens on loopback")
+    assert not (tmp_path / "t.csv").exists()
