@@ -5,8 +5,9 @@
     alice                             students: [alice, bob]
     bob
 
-CSV: one student a line, the name in the first column (a ``name`` header, blank lines and
-``#`` lines are skipped; other columns are the instructor's own, and ignored). YAML: a list of
+CSV: one student a line, the name in the first column (a ``name`` header, blank lines and what
+follows ``#`` are skipped; other columns are the instructor's own, and ignored): a plain list of
+names, one a line, is such a file, the roster ``skydeck grade --class --roster`` reads too. YAML: a list of
 names, or ``students:`` and optionally ``world:``. Names are ROS name segments (their namespace
 is ``/NAME``), each once (case aside): :func:`services.access.check_student_name`'s rule, so the
 tokens file takes them as they are. Every problem is one :class:`ClassroomError` line naming
@@ -75,8 +76,8 @@ def read_roster(path: Path) -> Roster:
 def _from_csv(path: Path, text: str) -> list[tuple[int, str]]:
     names: list[tuple[int, str]] = []
     for number, row in enumerate(csv.reader(io.StringIO(text)), start=1):
-        name = row[0].strip() if row else ""
-        if not name or name.startswith("#") or (not names and name.lower() == "name"):
+        name = row[0].split("#", 1)[0].strip() if row else ""  # what follows # is a comment
+        if not name or (not names and name.lower() == "name"):
             continue
         names.append((number, name))
     return names

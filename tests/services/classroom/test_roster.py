@@ -32,8 +32,8 @@ def _file(tmp_path: Path, name: str, text: str) -> Path:
 
 
 def test_a_csv_roster_is_its_first_column_under_an_optional_header(tmp_path: Path) -> None:
-    roster = _file(tmp_path, "students.csv", "name,email\n# the Monday group\nalice,a@x.org\n\nbob , b@x.org\n")
-    assert read_roster(roster) == Roster(("alice", "bob"), "robot")
+    roster = _file(tmp_path, "students.csv", "name,email\n# the Monday group\nalice,a@x.org\n\nbob , b@x.org\ncarol # late\n")
+    assert read_roster(roster) == Roster(("alice", "bob", "carol"), "robot")
 
 
 def test_a_yaml_roster_is_a_list_or_students_and_a_world(tmp_path: Path) -> None:
