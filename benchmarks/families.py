@@ -16,7 +16,7 @@ from benchmarks.topic_families import (
     throughput,
     throughput_by_size,
 )
-from benchmarks.world_families import flight, mission, robot, rtf_by_boxes, sim
+from benchmarks.world_families import flight, grading, mission, robot, rtf_by_boxes, sim
 
 __all__ = ["families"]
 
@@ -39,6 +39,7 @@ def families(suite: Suite, only: set[str] | None = None) -> list[Family]:
         camera_family(suite.core, window_s=max(suite.settings.sim_window_s, 3.0), repetitions=suite.settings.sim_repetitions),
         rosbridge(suite),
         bag(suite),
+        grading(suite),
         *ros2(suite),
         fences(suite),
         class_room(suite),

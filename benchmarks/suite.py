@@ -41,6 +41,7 @@ class Settings:
     bag_repetitions: int = 1
     bag_window_s: float = 2.0
     http_client_repetitions: int = 3
+    grading_repetitions: int = 3
     fence_messages: int = 20_000
     class_students: int = 30
     class_repetitions: int = 1
@@ -51,7 +52,7 @@ QUICK = Settings(
     fanout_repetitions=1, fanout_s=2.0,
     service_repetitions=3, service_calls=300, http_client_repetitions=1,
     sim_repetitions=2, sim_window_s=1.0, sim_bare_steps=2400,
-    mission_worlds=20, mission_flights=1, startup_repetitions=1,
+    mission_worlds=20, mission_flights=1, startup_repetitions=1, grading_repetitions=1,
 )  # fmt: skip
 FULL = Settings(
     topic_repetitions=5, throughput_s=3.0, latency_s=5.0, latency_rate_hz=1000.0,

@@ -145,3 +145,27 @@ def flight(suite: Suite) -> Family:
         ]  # fmt: skip
 
     return Family("flight", [trial], 1, summarise, rows=("mission_flown_ratio", "mission_time"))
+
+
+def grading(suite: Suite) -> Family:
+    """grade_run_s, grade_step_ms, grade_sim_rate: ``skydeck grade`` of one behaviour, one seed
+    (:mod:`benchmarks.grading`)."""
+    from benchmarks.grading import measure_grading
+
+    trial = Trial("grade", "skydeck grade wall_follower.yaml wall_follower, one seed", measure_grading)
+
+    def summarise(readings: Readings) -> list[Result]:
+        got = readings["grade"]
+        return [
+            Result("grade_run_s", median_of(got, "wall_s"), "s", target="< 30 s (one behaviour, one seed)",
+                   met=median_of(got, "wall_s") < 30.0, samples=[r["wall_s"] for r in got],
+                   detail={"sim_time_s": got[0]["sim_time_s"], "cpu_s_while_stepping": got[0]["cpu_s"]}),
+            Result("grade_step_ms", median_of(got, "step_ms"), "ms a step", "CPU ms a step, every process",
+                   median_of(got, "cpu_ms_per_step"), target="- (1/30 sim s a step, in lockstep)",
+                   samples=[r["step_ms"] for r in got]),
+            Result("grade_sim_rate", median_of(got, "sim_rate"), "x real time", target="- (while stepping)",
+                   samples=[r["sim_rate"] for r in got]),
+        ]  # fmt: skip
+
+    return Family("grading", [trial], suite.settings.grading_repetitions, summarise,
+                  rows=("grade_run_s", "grade_step_ms", "grade_sim_rate"))  # fmt: skip

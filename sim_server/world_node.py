@@ -23,9 +23,11 @@ from typing import Any, ClassVar, Generic, Protocol, TypeVar
 from pydantic import ValidationError
 
 from services.runtime import Node, NodeSettings
+from services.runtime.lockstep import agent as lockstep
+from services.runtime.lockstep.frames import StepWhat
 from services.runtime.parameters import InvalidParameterValueException
 from services.runtime.settings import node_settings
-from shared_models.builtin_interfaces import Time
+from shared_models.builtin_interfaces import Time, split_seconds
 from shared_models.rcl_interfaces import IntegerRange, ParameterDescriptor
 from shared_models.ros_workshop import SimWorld
 from shared_models.std_msgs import Header
@@ -94,8 +96,8 @@ class WorldNode(Node, Generic[S]):
     # -- hooks --------------------------------------------------------------------------------
 
     def _publish_tick(self, steps: int) -> None:
-        """Publish what is due after the physics reached ``steps``: ``/clock`` (through
-        ``clock_publisher``) and the world's own topics."""
+        """Publish the world's own topics that are due after the physics reached ``steps``
+        (``/clock`` is published beside them, by :meth:`_publish_clock`)."""
         raise NotImplementedError
 
     def _reset_world(self) -> str:
@@ -175,6 +177,11 @@ class WorldNode(Node, Generic[S]):
         """A header stamped with the world's sim time."""
         return Header(stamp=Time.from_seconds(self.world.time_s), frame_id=frame_id)
 
+    def _publish_clock(self) -> None:
+        """``/clock``: the world's sim time now."""
+        sec, nanosec = split_seconds(self.world.time_s)
+        self.clock_publisher.publish_built(lambda: Time(sec=sec, nanosec=nanosec))
+
     def _publish_world(self) -> SimWorld:
         """Announce a new build of the world: a random id that no other build has (progress
         saved for one build, the AI's, must never be taken for another, even of the same seed)."""
@@ -204,15 +211,21 @@ class WorldNode(Node, Generic[S]):
         self.world.close()
 
     async def _run_physics(self) -> None:
-        """Step in chunks of one publishing period, publish, and keep pace with the wall clock."""
+        """Step in chunks of one publishing period, publish, and keep pace with the wall clock;
+        in a lockstep run, step when the run's coordinator says (:meth:`_lockstep_step`)."""
+        if self.settings.lockstep_url:
+            lockstep.set_stepper(self._lockstep_step)
+            return
         world = self.world
         speed = self.sim.speed
         every = self.PUBLISH_EVERY_STEPS
         sim_origin_s = world.time_s
         wall_origin_s = time.monotonic()
+        self._publish_clock()
         self._publish_tick(world.steps)
         while True:
             world.step(every - world.steps % every)
+            self._publish_clock()
             self._publish_tick(world.steps)
             if speed is None:
                 await asyncio.sleep(0)  # as fast as possible, but let sockets and callbacks run
@@ -227,3 +240,13 @@ class WorldNode(Node, Generic[S]):
                     )
                     sim_origin_s, wall_origin_s = world.time_s, time.monotonic()
                 await asyncio.sleep(0)
+
+    def _lockstep_step(self, what: StepWhat) -> float:
+        """One step of a lockstep run: ``advance`` steps a publishing period, ``start`` does not;
+        both publish (the run's agents move the nodes' clocks once the step's messages are in)."""
+        world = self.world
+        if what == "advance":
+            world.step(self.PUBLISH_EVERY_STEPS - world.steps % self.PUBLISH_EVERY_STEPS)
+        self._publish_clock()
+        self._publish_tick(world.steps)
+        return world.time_s

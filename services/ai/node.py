@@ -140,6 +140,13 @@ class AiNode(Node):
                 additional_constraints=f"one of: {', '.join(LANDING_POLICIES)}",
             ),
         )
+        # Starting on its own is a parameter too (`-p start_mission:=true`, as `skydeck grade`'s
+        # drone assignment gives it), its default the flag's; read once, when the node starts.
+        self.declare_parameter(
+            "start_mission",
+            self.ai.start_mission,
+            ParameterDescriptor(description="start the mission as soon as the node runs (else wait for /ai/start)", read_only=True),
+        )
         self.store = store or ProgressStore(self.settings.skydeck_state_dir, warn=self.get_logger().warning)
         self.drone_position: Point | None = None
         self.tracker = WorldTracker()
@@ -196,7 +203,7 @@ class AiNode(Node):
 
     async def start(self) -> None:
         await super().start()
-        if self.ai.start_mission:
+        if self.get_parameter("start_mission").value:
             self._start_mission()  # as the seed's AI: the mission starts once the world is ready
         else:
             self.get_logger().info("waiting for /ai/start (the dashboard's Start mission button)")

@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 import argparse
+import re
+from collections.abc import Mapping
+from pathlib import Path
 
 from services.cli.errors import CliError
 from services.cli.run import add_endpoint_flags
@@ -19,7 +22,9 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
     p.add_argument(
         "file",
         nargs="?",
-        help="a YAML launch file, a roslaunch XML file (.launch), or a shipped one by name: "
+        help="a YAML launch file, a roslaunch XML file (.launch), a ROS 2 launch file (.launch.py, "
+        "ROS 2 XML or YAML; `skydeck launch PACKAGE FILE` finds it in a workspace package, as ros2 launch), "
+        "or a shipped one by name: "
         + ", ".join(f"{entry.launch_file} (the {name} world)" for name, entry in WORLDS.items())
         + f"; default {default_world().launch_file}",
     )
@@ -27,7 +32,8 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
         "launch_args",
         nargs="*",
         metavar="NAME:=VALUE",
-        help="the launch file's arguments (a YAML file's `arguments:`, a roslaunch file's <arg>s)",
+        help="the launch file's arguments (a YAML file's `arguments:`, a roslaunch file's <arg>s, "
+        "a ROS 2 file's DeclareLaunchArgument)",
     )
     p.add_argument(
         "--show-args", action="store_true", help="list the arguments the launch file takes, with defaults, and exit"
@@ -53,7 +59,9 @@ def _launch(args: argparse.Namespace) -> int:
         DEFAULT_BASE_PORT,
         LaunchOptions,
         launch_arguments,
+        package_launch_file,
         run_launch,
+        shipped_launch_files,
         show_arguments,
     )
     from services.launch.settings import LaunchSettings
@@ -62,6 +70,9 @@ def _launch(args: argparse.Namespace) -> int:
     if args.file is not None and ":=" in args.file:  # `skydeck launch name:=value`: the default file's
         args.launch_args.insert(0, args.file)
         args.file = None
+    if args.file is not None and _names_a_package(args.file, args.launch_args, shipped_launch_files()):
+        # `skydeck launch PACKAGE FILE` (ros2 launch): the file in the workspace package
+        args.file = str(package_launch_file(args.file, args.launch_args.pop(0)))
     if args.show_args:
         print(show_arguments(launch_arguments(args.file)))
         return 0
@@ -91,3 +102,15 @@ def _launch(args: argparse.Namespace) -> int:
     settings = LaunchSettings()  # the launcher's environment, read once
     # a LaunchError is one line, by main
     return run_launch(args.file, options, launch_args=launch_args, settings=settings, base_port_given=args.base_port is not None)
+
+
+def _names_a_package(file: str, launch_args: list[str], shipped: Mapping[str, object]) -> bool:
+    """Whether ``skydeck launch FILE WORD`` is ``ros2 launch``'s ``PACKAGE FILE``: a bare name
+    that is no file here and no shipped launch, then a word that is no ``name:=value``."""
+    return (
+        bool(launch_args)
+        and ":=" not in launch_args[0]
+        and re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", file) is not None
+        and file not in shipped
+        and not Path(file).exists()
+    )

@@ -15,6 +15,7 @@ from services.cli import (
     bridge,
     completion,
     doctor,
+    grade,
     interface,
     node,
     param,
@@ -44,7 +45,7 @@ def build_parser() -> argparse.ArgumentParser:
         parser.add_subparsers(dest="command", required=True, metavar="COMMAND"),
     )
     run.add_parsers(subparsers)
-    for module in (topic, service, action, node, param, interface, bag, bridge, doctor, completion):
+    for module in (topic, service, action, node, param, interface, bag, bridge, grade, doctor, completion):
         module.add_parser(subparsers)
     _add_optional(subparsers)
     return parser

@@ -3,6 +3,7 @@
     SKYDECK_CORE_URL    where the core is (default http://127.0.0.1:8000), as ROS_MASTER_URI
     SKYDECK_TOKEN       the write token, sent as ``Authorization: Bearer ...``
     SKYDECK_COMP_WORDS, SKYDECK_COMP_CWORD   the words being completed (the completion scripts set them)
+    SKYDECK_GRADE_SECRET  the instructor's secret that ``skydeck grade --seeds hidden`` derives seeds from
 
 The processes a command starts (``skydeck core``, ``skydeck run``, ``skydeck launch``) have their
 own settings on top (``CoreProcessSettings``, ``NodeSettings``, ``LaunchSettings``).
@@ -26,6 +27,7 @@ class CliSettings(BaseSettings):
     token: str = ""
     comp_words: str = ""
     comp_cword: str = ""
+    grade_secret: str = ""
 
 
 _this_command: CliSettings | None = None

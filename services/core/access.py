@@ -1,9 +1,10 @@
 """What a protocol endpoint may use of the core: one object handed to every endpoint plugin.
 
 Topics go through the core node (:class:`~services.core.gateway_topic.GatewayTopic`), service
-calls through the one call path (:class:`~services.core.service_calls.ServiceCalls`), and each
+calls through the one call path (:class:`~services.core.service_calls.ServiceCalls`), each
 connection is a guest in the graph (:class:`~services.core.guests.Guests`), admitted by the
-core's fences (:class:`~services.access.Fences`: what its token may do). The registry is
+core's fences (:class:`~services.access.Fences`: what its token may do), and ROS 1's
+parameters are the core's parameter server (rosapi's ``get_param`` of a ROS 1 name). The registry is
 read, never written, by endpoints. The core builds it when it starts and gives it to each
 plugin (:mod:`services.core.endpoint_servers`); it knows nothing of the protocols themselves.
 """
@@ -16,6 +17,7 @@ from services.access import Fences
 from services.core.core_node import CoreNode
 from services.core.gateway import Gateway
 from services.core.guests import Guests
+from services.core.parameter_server import ParameterTree
 from services.core.registry import Registry
 from services.core.service_calls import ServiceCalls
 from services.core.settings import CoreSettings
@@ -34,3 +36,4 @@ class CoreAccess:
     gateway: Gateway
     settings: CoreSettings
     fences: Fences
+    rosparam: ParameterTree

@@ -90,6 +90,7 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
     core_url = settings.advertise_url or f"http://{reachable_host(settings.host)}:{settings.port}"
     core_node = CoreNode(registry, settings, core_url)
     servers = EndpointServers(settings, endpoints)
+    rosparam = ParameterTree()  # ROS 1's parameter server: the core's, as roscore's
 
     @contextlib.asynccontextmanager
     async def lifespan(app: CoreApp) -> AsyncIterator[None]:
@@ -105,7 +106,7 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
         app.state.calls = calls
         app.service_calls = calls
         app.state.recordings = Recordings(settings.recordings_folder, core_node, registry)
-        await servers.start(CoreAccess(core_node, registry, guests, calls, gateway, settings, fences))
+        await servers.start(CoreAccess(core_node, registry, guests, calls, gateway, settings, fences, rosparam))
         try:
             yield
         finally:
@@ -134,7 +135,7 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
     app.state.fences = fences
     app.state.core_node = core_node
     app.state.endpoints = servers
-    app.state.rosparam = ParameterTree()  # ROS 1's parameter server: the core's, as roscore's
+    app.state.rosparam = rosparam
     install_error_handlers(app)
     app.include_router(api_router)
     app.include_router(access_router)

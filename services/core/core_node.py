@@ -35,9 +35,10 @@ _STATS_PERIOD_S = 1.0
 
 @dataclass
 class _Publication:
-    """Clients publishing one topic through the core."""
+    """Clients publishing one topic through the core; ``latched`` of them latch it."""
 
     sockets: int = 0
+    latched: int = 0
     expiry: asyncio.TimerHandle | None = None
 
 
@@ -120,26 +121,35 @@ class CoreNode:
             self._forget_if_unused(endpoint)
             self._changed()
 
-    def start_publishing(self, topic: str, msg_type: type[Message]) -> TopicEndpoint:
-        """A client socket publishes ``topic``: the core publishes it, latched."""
+    def start_publishing(self, topic: str, msg_type: type[Message], *, latched: bool = True) -> TopicEndpoint:
+        """A client socket publishes ``topic``: the core publishes it, latched while any of its
+        publishing clients latches it (every native socket does; a rosbridge client when it
+        advertises with ``latch``)."""
         endpoint = self.participant.endpoint(msg_type, topic)
         publication = self._publications.setdefault(topic, _Publication())
         if publication.expiry is not None:
             publication.expiry.cancel()
             publication.expiry = None
         publication.sockets += 1
-        if not endpoint.publishing:
-            endpoint.publishing = endpoint.latched = True
+        publication.latched += latched
+        if not endpoint.publishing or endpoint.latched != (publication.latched > 0):
+            endpoint.publishing = True
+            endpoint.latched = publication.latched > 0
             self._changed()
         return endpoint
 
-    def stop_publishing(self, topic: str) -> None:
+    def stop_publishing(self, topic: str, *, latched: bool = True) -> None:
         """A publishing socket closed; the topic stays advertised a little longer (linger), so
         ``topic pub --once`` reaches subscribers that link a moment later."""
         publication = self._publications.get(topic)
         if publication is None:
             return
         publication.sockets -= 1
+        publication.latched -= latched
+        endpoint = self.participant.endpoints.get(topic)
+        if publication.sockets and endpoint is not None and endpoint.latched and not publication.latched:
+            endpoint.latched = False
+            self._changed()
         if publication.sockets == 0:
             publication.expiry = asyncio.get_running_loop().call_later(
                 self._settings.gateway_linger_s, self._expire, topic

@@ -50,17 +50,29 @@ class GatewayTopic:
     """One client's view of one topic through the core node."""
 
     def __init__(
-        self, core: CoreNode, registry: Registry, name: str, declared: type[Message] | None, *, visitor: Pass | None
+        self,
+        core: CoreNode,
+        registry: Registry,
+        name: str,
+        declared: type[Message] | None,
+        *,
+        visitor: Pass | None,
+        latched: bool = True,
     ) -> None:
         self.name = name
         self._core = core
         self._registry = registry
         self._declared = declared
+        self._latched = latched  # whether what this client publishes is latched (see CoreNode)
         self._type: type[Message] | None = None  # fixed by the first valid frame
         self._endpoint: TopicEndpoint | None = None  # the core's, once this client publishes
         self._visitor = None if visitor is None or visitor.unlimited else visitor  # None: nothing to check
         self._bucket = None if self._visitor is None else self._visitor.bucket  # a student's rate, per frame
         self._may_publish = self._visitor is None  # decided at the first publish
+
+    @property
+    def latched(self) -> bool:
+        return self._latched
 
     # -- reading and publishing (what every client of the core does) ----------------------------
 
@@ -74,7 +86,7 @@ class GatewayTopic:
         (in the outbox's encoding). AccessRefused if the client may not read it."""
         self.check(Verb.READ)
         endpoint = self._core.start_reading(self.name, outbox)
-        if endpoint.latest is not None and (endpoint.publishing or self._registry.is_latched(self.name)):
+        if endpoint.latest is not None and (endpoint.latched or self._registry.is_latched(self.name)):
             return endpoint.latest.get(outbox.encoding)
         return None
 
@@ -88,7 +100,7 @@ class GatewayTopic:
         self._admit_publishing()
         if self._endpoint is None:
             msg_type = self.message_type()
-            self._endpoint = self._core.start_publishing(self.name, msg_type)
+            self._endpoint = self._core.start_publishing(self.name, msg_type, latched=self._latched)
             self._type = msg_type
 
     def publish(self, frame: Frame, sender: Outbox | None) -> bool:
@@ -107,7 +119,7 @@ class GatewayTopic:
         endpoint = self._endpoint
         first = endpoint is None
         if endpoint is None:
-            endpoint = self._endpoint = self._core.start_publishing(self.name, msg_type)
+            endpoint = self._endpoint = self._core.start_publishing(self.name, msg_type, latched=self._latched)
             self._type = msg_type
         endpoint.dispatch(msg, endpoint.frames_of(msg, frame), sender)
         return first
@@ -121,7 +133,7 @@ class GatewayTopic:
         """This client publishes no more (the topic lingers, latched, as for a closed socket)."""
         if self._endpoint is not None:
             self._endpoint = None
-            self._core.stop_publishing(self.name)
+            self._core.stop_publishing(self.name, latched=self._latched)
 
     def message_type(self) -> type[Message]:
         """The type a frame published here must have; FrameRejected(1008) when none is known."""

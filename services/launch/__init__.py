@@ -20,7 +20,7 @@ from services.launch.plan import (
 )
 from services.launch.roslaunch import RosLaunch, RosNode, is_roslaunch_file
 from services.launch.roslaunch_reader import load_roslaunch_file
-from services.launch.run import core_answers, launch_arguments, run_launch
+from services.launch.run import core_answers, launch_arguments, package_launch_file, run_launch
 from services.launch.spec import (
     BUILTIN_RUNS,
     PLACEHOLDERS,
@@ -59,6 +59,7 @@ __all__ = [
     "launch_arguments",
     "load_launch_file",
     "load_roslaunch_file",
+    "package_launch_file",
     "plan_launch",
     "run_launch",
     "shipped_launch_files",

@@ -10,7 +10,7 @@ from pathlib import Path
 
 from shared_models.errors import SkydeckError
 
-__all__ = ["LaunchError", "LaunchFileError"]
+__all__ = ["LaunchError", "LaunchFileError", "read_launch_text"]
 
 
 class LaunchError(SkydeckError):
@@ -41,3 +41,15 @@ class LaunchFileError(LaunchError):
         super().__init__(f"{path}: {problem}")
         self.path = Path(path)
         self.problem = problem
+
+
+def read_launch_text(path: Path) -> str:
+    """The launch file's text; a missing, unreadable or non-UTF-8 file is one ``LaunchFileError``."""
+    try:
+        return path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise LaunchFileError(path, "no such launch file") from None
+    except IsADirectoryError:
+        raise LaunchFileError(path, "is a folder, not a launch file") from None
+    except (OSError, UnicodeDecodeError) as error:
+        raise LaunchFileError(path, f"cannot read it: {error}") from None

@@ -128,6 +128,7 @@ class NodePlan:
     name: str
     run: str
     port: int
+    package: str | None = None  # run is this workspace package's executable
     args: tuple[str, ...] = ()
     env: dict[str, str] = field(default_factory=dict)
     respawn: bool = True
@@ -200,11 +201,13 @@ def core_url(spec: LaunchSpec, options: LaunchOptions) -> str:
 
 
 def default_command(plan: NodePlan) -> list[str]:
-    """``skydeck core --port P`` for the core, else ``skydeck run RUN --port P ARGS...``."""
+    """``skydeck core --port P`` for the core, else ``skydeck run RUN --port P ARGS...`` (``skydeck
+    run PACKAGE RUN ...`` for a package's executable)."""
     cli = [sys.executable, "-m", "services.cli"]
     if plan.is_core:
         return [*cli, "core", "--port", str(plan.port), *plan.args]
-    return [*cli, "run", plan.run, "--port", str(plan.port), *plan.args]
+    program = [plan.package, plan.run] if plan.package else [plan.run]
+    return [*cli, "run", *program, "--port", str(plan.port), *plan.args]
 
 
 def _plan(node: NodeSpec, base_port: int, values: dict[str, str]) -> NodePlan:
@@ -219,6 +222,7 @@ def _plan(node: NodeSpec, base_port: int, values: dict[str, str]) -> NodePlan:
         name=node.name,
         run=node.run,
         port=base_port + node.port_offset,
+        package=node.package,
         args=args,
         env=env,
         respawn=node.respawn,

@@ -38,7 +38,7 @@ from services.launch.arguments import literal
 from services.launch.errors import LaunchFileError
 from services.launch.spec import LaunchSpec, NodeSpec
 
-__all__ = ["NODE_PORT_OFFSET", "RosLaunch", "RosNode", "is_roslaunch_file"]
+__all__ = ["NODE_PORT_OFFSET", "LaunchEntry", "RosLaunch", "RosNode", "is_roslaunch_file", "ros_launch_spec"]
 
 NODE_PORT_OFFSET = 2
 """The first node's port is the base port + this (+1 is the simulator's, as in the workshop's)."""
@@ -80,24 +80,48 @@ class RosLaunch:
 
     def spec(self, *, start_core: bool) -> LaunchSpec:
         """The launch the supervisor runs: the core first if ``start_core``, then every node."""
-        nodes = [NodeSpec(name="core", run="core", port_offset=0)] if start_core else []
-        for index, node in enumerate(self.nodes):
-            if node.launch_name == "launch" or (start_core and node.launch_name == "core"):
-                raise LaunchFileError(
-                    self.file, f"{node.place}: a node named {node.name} clashes with skydeck launch's own; rename it"
-                )
-            nodes.append(
-                NodeSpec(
-                    name=node.launch_name,
-                    run=str(node.program),
-                    port_offset=NODE_PORT_OFFSET + index,
-                    # Braces in a roslaunch file are text; in a launch spec, placeholders.
-                    args=tuple(literal(arg) for arg in node.args),
-                    env={key: literal(value) for key, value in node.env},
-                    respawn=node.respawn,
-                    ready_timeout_s=_READY_TIMEOUT_S,
-                )
+        entries = [
+            LaunchEntry(node.launch_name, str(node.program), node.args, node.env, node.respawn, node.place, graph_name=node.name)
+            for node in self.nodes
+        ]
+        return ros_launch_spec(self.file, entries, start_core=start_core)
+
+
+@dataclass(frozen=True)
+class LaunchEntry:
+    """One node of a ROS launch file (1 or 2) as the supervisor will run it: ``skydeck run RUN
+    ARGS`` (``skydeck run PACKAGE RUN ARGS`` with a package), named ``name`` in the launch."""
+
+    name: str
+    run: str
+    args: tuple[str, ...]
+    env: tuple[tuple[str, str], ...]
+    respawn: bool
+    place: str
+    package: str | None = None
+    graph_name: str = ""  # how errors name it, if not by ``name``
+
+
+def ros_launch_spec(file: Path, entries: list[LaunchEntry], *, start_core: bool) -> LaunchSpec:
+    """The launch of a ROS launch file's nodes: the core first if ``start_core``, then each on
+    base port + NODE_PORT_OFFSET + its index."""
+    nodes = [NodeSpec(name="core", run="core", port_offset=0)] if start_core else []
+    for index, entry in enumerate(entries):
+        if entry.name == "launch" or (start_core and entry.name == "core"):
+            raise LaunchFileError(file, f"{entry.place}: a node named {entry.graph_name or entry.name} clashes with skydeck launch's own; rename it")
+        nodes.append(
+            NodeSpec(
+                name=entry.name,
+                package=entry.package,
+                run=entry.run,
+                port_offset=NODE_PORT_OFFSET + index,
+                # Braces in a ROS launch file are text; in a launch spec, placeholders.
+                args=tuple(literal(arg) for arg in entry.args),
+                env={key: literal(value) for key, value in entry.env},
+                respawn=entry.respawn,
+                ready_timeout_s=_READY_TIMEOUT_S,
             )
-        if not nodes:
-            raise LaunchFileError(self.file, "the launch file starts no node (and a core already runs)")
-        return LaunchSpec(nodes=tuple(nodes))
+        )
+    if not nodes:
+        raise LaunchFileError(file, "the launch file starts no node (and a core already runs)")
+    return LaunchSpec(nodes=tuple(nodes))

@@ -26,7 +26,15 @@ from services.launch.arguments import LaunchArgument
 from services.launch.errors import LaunchError
 from services.launch.output import say
 from services.launch.plan import LaunchOptions, core_url
-from services.launch.roslaunch import is_roslaunch_file
+from services.launch.ros2 import (
+    declared_ros2_arguments,
+    find_launch_file_in_package,
+    load_ros2_launch,
+    ros2_kind,
+    workspace_for,
+)
+from services.launch.ros2.model import Ros2Launch
+from services.launch.roslaunch import RosLaunch, is_roslaunch_file
 from services.launch.roslaunch_reader import load_roslaunch_file
 from services.launch.roslaunch_xml import declared_arguments
 from services.launch.settings import LaunchSettings
@@ -34,7 +42,7 @@ from services.launch.spec import LaunchSpec, find_launch_file, load_launch_file
 from services.launch.supervisor import Supervisor
 from services.runtime.http_client import HttpError, request_once
 
-__all__ = ["core_answers", "launch_arguments", "run_launch"]
+__all__ = ["core_answers", "launch_arguments", "package_launch_file", "run_launch"]
 
 _CORE_PROBE_S = 1.0
 _THIS_MACHINE = ("127.0.0.1", "localhost", "::1", "0.0.0.0")
@@ -50,7 +58,8 @@ def run_launch(
     base_port_given: bool = True,
 ) -> int:
     """``skydeck launch``: load the launch file (default: the workshop's; a bare name such as
-    ``robot`` names a shipped one; a ``.launch``/``.xml`` file is roslaunch XML), with
+    ``robot`` names a shipped one; a ``.launch``/``.xml`` file is roslaunch XML; a ``.py`` file,
+    ROS 2 XML or YAML with ``launch:`` is ROS 2's, :mod:`services.launch.ros2`), with
     ``launch_args`` as its ``name:=value`` arguments, and run it until stopped.
 
     A running core is used, and none started, when one answers where the launch looks (see the
@@ -61,9 +70,13 @@ def run_launch(
     file = find_launch_file(path)
     options = options or LaunchOptions()
     settings = settings or LaunchSettings()
-    roslaunch = is_roslaunch_file(file)
-    if roslaunch:
-        ros = load_roslaunch_file(file, launch_args, environ=settings.environment)
+    ros2 = ros2_kind(file) is not None
+    roslaunch = not ros2 and is_roslaunch_file(file)
+    if ros2 or roslaunch:
+        if ros2:
+            ros: RosLaunch | Ros2Launch = load_ros2_launch(file, launch_args, environ=settings.environment)
+        else:
+            ros = load_roslaunch_file(file, launch_args, environ=settings.environment)
         for warning in ros.warnings:
             say(out, f"warning: {warning}")
         spec, parameters = ros.spec(start_core=True), ros.parameters
@@ -76,7 +89,7 @@ def run_launch(
     running = core_answers(url)
     if running:
         say(out, f"a core answers at {url}: the launch joins it")
-        if roslaunch:
+        if ros2 or roslaunch:
             spec = ros.spec(start_core=False)
         else:
             options = _without_core(spec, options, url)
@@ -119,9 +132,17 @@ def launch_arguments(path: str | Path | None = None) -> dict[str, LaunchArgument
     --show-args``), in the order it declares them: a YAML file's ``arguments:``, a roslaunch
     file's settable ``<arg>``s. Raises ``LaunchFileError`` as loading it does."""
     file = find_launch_file(path)
+    if ros2_kind(file) is not None:
+        return declared_ros2_arguments(file, environ=LaunchSettings().environment)
     if is_roslaunch_file(file):
         return declared_arguments(file)
     return dict(load_launch_file(file).arguments)
+
+
+def package_launch_file(package: str, name: str) -> Path:
+    """``skydeck launch PACKAGE FILE`` (``ros2 launch``): the file in the package's launch
+    folder, the package found in the current folder's workspace. Raises ``LaunchError``."""
+    return find_launch_file_in_package(workspace_for(None), package, name)
 
 
 def core_answers(url: str) -> bool:

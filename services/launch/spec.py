@@ -42,7 +42,7 @@ from pydantic_core import ErrorDetails, PydanticCustomError
 
 from services.builtin_nodes import BUILTIN_NODES
 from services.launch.arguments import LaunchArgument, fill_arguments, substitute
-from services.launch.errors import LaunchError, LaunchFileError
+from services.launch.errors import LaunchError, LaunchFileError, read_launch_text
 from sim_server.worlds import default_world, world_options  # the table only: no PyBullet
 
 __all__ = [
@@ -103,7 +103,10 @@ class NodeSpec(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True, coerce_numbers_to_str=True)
 
     name: str = Field(pattern=_NAME_PATTERN, max_length=64, description="unique; prefixes output")
-    run: str = Field(min_length=1, description="core, a built-in node, or a path to a .py file")
+    package: str | None = Field(
+        default=None, pattern=r"^[A-Za-z][A-Za-z0-9_]*$", description="a workspace package; run is its executable"
+    )
+    run: str = Field(min_length=1, description="core, a built-in node, a path to a .py file, or package's executable")
     port_offset: int = Field(ge=0, le=1000, description="the node listens on base_port + this")
     args: tuple[_Template, ...] = Field(default=(), description="extra flags; may use placeholders")
     env: dict[_Identifier, _Template] = Field(default_factory=dict, description="extra environment")
@@ -119,9 +122,9 @@ class NodeSpec(BaseModel):
 
     @field_validator("run")
     @classmethod
-    def _known_run(cls, value: str) -> str:
-        if value in BUILTIN_RUNS or value.endswith(".py"):
-            return value
+    def _known_run(cls, value: str, info: ValidationInfo) -> str:
+        if value in BUILTIN_RUNS or value.endswith(".py") or info.data.get("package"):
+            return value  # a package's executable is looked for when it runs (`skydeck run PKG EXE`)
         raise PydanticCustomError(
             "unknown_run",
             f"{value!r} is neither a built-in ({', '.join(BUILTIN_RUNS)}) nor a path to a .py file",
@@ -262,14 +265,7 @@ def load_launch_file(path: str | Path, arguments: Mapping[str, str] | None = Non
         ('core', 'sim', 'perception', 'control', 'ai')
     """
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise LaunchFileError(path, "no such launch file") from None
-    except IsADirectoryError:
-        raise LaunchFileError(path, "is a folder, not a launch file") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise LaunchFileError(path, f"cannot read it: {error}") from None
+    text = read_launch_text(path)
     try:
         data = yaml.safe_load(text)
     except yaml.YAMLError as error:
@@ -301,7 +297,7 @@ def _resolve_paths(spec: LaunchSpec, path: Path) -> LaunchSpec:
     folder = path.resolve().parent
     nodes = []
     for index, node in enumerate(spec.nodes):
-        if node.run in BUILTIN_RUNS:
+        if node.run in BUILTIN_RUNS or node.package is not None:
             nodes.append(node)
             continue
         file = (folder / node.run).resolve()

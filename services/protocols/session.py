@@ -5,7 +5,8 @@ An adapter (rosbridge, Foxglove) translates its frames into these calls and noth
 - ``start_reading(topic, ...)``: an :class:`Outbox` opened on the topic's
   :class:`~services.core.gateway_topic.GatewayTopic`, written to the socket by the edge's own
   writer (``write_outbox``) in the protocol's form (``encode``);
-- ``publish(topic, text)``: the same validation, fences and "no echo" as a native socket;
+- ``publish(topic, text)``: the same validation, fences and "no echo" as a native socket (back to
+  its own readings only with ``echo``);
 - ``call(service, body)``: the one service-call path of the HTTP gateway;
 - ``visitor``: who the connection's token is and what it may do (:mod:`services.access`), checked
   by the topic views and the call path; ``authenticate(token)`` for a token sent later;
@@ -22,7 +23,9 @@ its socket for ``SKYDECK_STALL_TIMEOUT_S``) is detached and closed with 4001, li
 native reader (docs/streams.md). The publishers and every other client go on meanwhile.
 
 A connection reads each topic once, however many subscriptions its client makes to it (the
-adapter merges them), so what it publishes on a topic is never sent back to it.
+adapter merges them). Whether what it publishes on a topic it reads comes back to it is the
+protocol's (``echo``): a native socket never gets its own frames back, a rosbridge connection
+does, as ROS delivers a node's own messages to its subscriptions (docs/protocols.md).
 """
 
 from __future__ import annotations
@@ -83,17 +86,18 @@ class ClientSession:
     """One protocol connection's readings, publications and calls (see the module docstring)."""
 
     @classmethod
-    def open(cls, access: CoreAccess, websocket: WebSocket, protocol: str) -> ClientSession:
+    def open(cls, access: CoreAccess, websocket: WebSocket, protocol: str, *, echo: bool = False) -> ClientSession:
         """A new connection of ``protocol`` ("rosbridge", "foxglove"), shown in the graph as
-        ``/PROTOCOL_client_N``."""
+        ``/PROTOCOL_client_N``; with ``echo``, what it publishes comes back to its own readings."""
         peer = f"{websocket.client.host}:{websocket.client.port}" if websocket.client else "?"
         guest = access.guests.add(f"/{protocol}_client", client=f"{protocol} client {peer}", numbered=True)
-        return cls(access, websocket, guest)
+        return cls(access, websocket, guest, echo=echo)
 
-    def __init__(self, access: CoreAccess, websocket: WebSocket, guest: Guest) -> None:
+    def __init__(self, access: CoreAccess, websocket: WebSocket, guest: Guest, *, echo: bool = False) -> None:
         self.access = access
         self.guest = guest
         self.visitor: Pass = access.fences.admit(presented_token(websocket))
+        self.echo = echo
         self._send = websocket.send
         self.readings: dict[str, Reading] = {}
         self._publications: dict[str, GatewayTopic] = {}
@@ -137,7 +141,10 @@ class ClientSession:
         acts as its subject. Refused for a token nobody has."""
         visitor = self.access.fences.admit(token)
         if visitor.subject.role is Role.ANONYMOUS and not visitor.unlimited:
-            raise Refused("auth: the mac is not this core's token (SKYDECK_TOKEN) nor a class token")
+            raise Refused(
+                "auth: the mac is not this core's token (SKYDECK_TOKEN), nor rosauth's MAC made with it in time, "
+                "nor a class token"
+            )
         self.visitor = visitor
 
     # -- reading --------------------------------------------------------------------------------
@@ -186,17 +193,20 @@ class ClientSession:
 
     # -- publishing -----------------------------------------------------------------------------
 
-    def declare(self, topic: str, declared: type[Message] | None) -> GatewayTopic:
+    def declare(self, topic: str, declared: type[Message] | None, *, latched: bool = True) -> GatewayTopic:
         """This connection publishes ``topic`` (of type ``declared``, if the client names one),
-        from now on: the core advertises it, so subscribers link before the first frame.
+        from now on: the core advertises it, so subscribers link before the first frame. With
+        ``latched``, its latest message goes to subscribers that come later.
 
         Raises FrameRejected(1008) when the type is missing for a new topic or differs from the
         topic's, AccessRefused when the client may not publish it.
         """
         view = self._publications.get(topic)
-        if view is not None and declared in (None, view.message_type()):
+        if view is not None and declared in (None, view.message_type()) and view.latched == latched:
             return view
-        view = GatewayTopic(self.access.core, self.access.registry, topic, declared, visitor=self.visitor)
+        view = GatewayTopic(
+            self.access.core, self.access.registry, topic, declared, visitor=self.visitor, latched=latched
+        )
         view.check(Verb.PUBLISH)
         view.message_type()  # refuses a type that does not fit before anything is published
         self.stop_publishing(topic)
@@ -205,15 +215,20 @@ class ClientSession:
         self.guest.publishes(topic, view.message_type().__ros_type__)
         return view
 
-    def publish(self, topic: str, text: str) -> None:
-        """Validate and publish one frame on ``topic``, to everyone but this connection.
+    def publication(self, topic: str) -> GatewayTopic | None:
+        """This connection's publication of ``topic``, if it publishes it."""
+        return self._publications.get(topic)
+
+    def publish(self, topic: str, text: str, *, latched: bool = True) -> None:
+        """Validate and publish one frame on ``topic``, to everyone (this connection too, with
+        ``echo``); the first frame of a topic not declared yet declares it (``latched``).
 
         Raises FrameRejected (1008 without a type, 1007 for a frame of another type),
         AccessRefused (the client may not publish it). A frame over the subject's rate is
         dropped and the connection shed (``serve`` returns the reason, 4002).
         """
-        view = self._publications.get(topic) or self.declare(topic, None)
-        reading = self.readings.get(topic)
+        view = self._publications.get(topic) or self.declare(topic, None, latched=latched)
+        reading = None if self.echo else self.readings.get(topic)
         try:
             view.publish(text, reading.outbox if reading is not None else None)
         except RateLimited as limited:

@@ -32,6 +32,7 @@ import types
 from collections.abc import Sequence
 from typing import Any
 
+from services.ros.aliases import AliasLoader
 from services.ros.errors import (
     NotProvidedImportError,
     UnknownMessageError,
@@ -99,23 +100,6 @@ def _is_message_package(name: str) -> bool:
         return True
     package = index.find(name)
     return package is not None and package.has_interfaces
-
-
-class _AliasLoader(importlib.abc.Loader):
-    """Loads a ROS name as the façade module it stands for: the same module object, which keeps
-    its own ``__spec__`` (Python sets the alias's spec on it while loading; it is put back)."""
-
-    def __init__(self, target: str) -> None:
-        self.target = target
-        self._own_spec: importlib.machinery.ModuleSpec | None = None
-
-    def create_module(self, spec: importlib.machinery.ModuleSpec) -> types.ModuleType:
-        module = importlib.import_module(self.target)
-        self._own_spec = module.__spec__
-        return module
-
-    def exec_module(self, module: types.ModuleType) -> None:
-        module.__spec__ = self._own_spec
 
 
 class _AdaptingLoader(importlib.abc.Loader):
@@ -253,7 +237,7 @@ class RosImportFinder(importlib.abc.MetaPathFinder):
         if real is None:
             raise NotProvidedImportError(not_provided(f"`{fullname}`"))
         return importlib.machinery.ModuleSpec(
-            fullname, _AliasLoader(target), is_package=real.submodule_search_locations is not None
+            fullname, AliasLoader(target), is_package=real.submodule_search_locations is not None
         )
 
     def _adapted_spec(

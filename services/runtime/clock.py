@@ -42,6 +42,8 @@ class Clock:
 
     def __init__(self, *, use_sim_time: bool = False) -> None:
         self.use_sim_time = use_sim_time
+        # Moved by a lockstep run's agent (services.runtime.lockstep), not by /clock messages.
+        self.driven = False
         self._sim_ns = 0
         self._advanced = asyncio.Event()
         self.jumps_back = 0

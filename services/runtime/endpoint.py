@@ -50,6 +50,9 @@ class TopicEndpoint:
         self.outboxes: set[Outbox] = set()  # readers of what this participant publishes
         self.taps: set[Outbox] = set()  # readers of everything on the topic (the core's clients)
         self.subscriptions: list[Subscription] = []
+        # Readers in a lockstep run (services.runtime.lockstep): their name, and the count of
+        # messages published here before they came (every later one is handed to them).
+        self._counted_readers: dict[Outbox, tuple[str, int]] = {}
 
     @property
     def subscribed(self) -> bool:
@@ -122,22 +125,24 @@ class TopicEndpoint:
             for subscription in self.subscriptions:
                 subscription.enqueue(msg)
 
-    def receive_link_frame(self, frame: Frame) -> None:
-        """A frame from a remote publisher, as received: parsed only if someone here needs it.
+    def receive_link_frame(self, frame: Frame) -> int:
+        """A frame from a remote publisher, as received: parsed only if someone here needs it;
+        returns how many messages it held.
 
         A link's frame may be a batch: each of its messages is delivered as if it had come
         alone, in order."""
         if not batch.is_batch(frame):
             self._receive_from_link(Frames.received(frame, self.msg_type))
-            return
+            return 1
         try:
             messages = batch.split(frame)
         except FrameRejected as error:
             logger.warning("dropped a frame on %s: %s", self.name, error.reason)
-            return
+            return 0
         made = Frames.received if isinstance(frame, str) else Frames.unpacked
         for message in messages:
             self._receive_from_link(made(message, self.msg_type))
+        return len(messages)
 
     def _receive_from_link(self, frames: Frames) -> None:
         self.latest = frames
@@ -172,11 +177,20 @@ class TopicEndpoint:
 
     def open(self, connection: TopicConnection) -> Frame | None:
         """A socket reads what this participant publishes; a latched topic's latest goes first."""
+        initial = None
+        if self.latched and self.publishing and self.latest is not None:
+            initial = self.latest.get(connection.encoding)
         if connection.outbox is not None:
             self.outboxes.add(connection.outbox)
-        if self.latched and self.publishing and self.latest is not None:
-            return self.latest.get(connection.encoding)
-        return None
+            if connection.options.reader:
+                already = self.published_count - (1 if initial is not None else 0)
+                self._counted_readers[connection.outbox] = (connection.options.reader, already)
+        return initial
+
+    def sent_to_readers(self) -> list[tuple[str, int]]:
+        """Messages handed to each reader in a lockstep run so far: (reader node, count)."""
+        published = self.published_count
+        return [(reader, published - already) for reader, already in self._counted_readers.values()]
 
     def receive_frame(self, connection: TopicConnection, frame: Frame) -> None:
         """A client published ``frame`` here: the node publishes it, or, if the node only
@@ -194,3 +208,4 @@ class TopicEndpoint:
     def close(self, connection: TopicConnection) -> None:
         if connection.outbox is not None:
             self.outboxes.discard(connection.outbox)
+            self._counted_readers.pop(connection.outbox, None)

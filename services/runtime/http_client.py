@@ -47,6 +47,7 @@ from services.runtime.http_connection import (
     HttpUnreachable,
     Outcome,
 )
+from services.runtime.lockstep.activity import ACTIVITY
 
 __all__ = [
     "MAX_REPLY_BYTES", "Cancellable", "HttpClient", "HttpError", "HttpReply", "HttpTimeout", "HttpUnreachable",
@@ -218,9 +219,10 @@ class HttpClient:
         headers: Mapping[str, str] | None = None,
     ) -> HttpReply:
         """Send one request and return the whole reply (any status)."""
-        outcome: Outcome = await outcome_of(
-            lambda on_done: self.start(method, url, body, timeout_s=timeout_s, headers=headers, on_done=on_done)
-        )
+        with ACTIVITY.working():  # a lockstep run waits for the reply (services.runtime.lockstep)
+            outcome: Outcome = await outcome_of(
+                lambda on_done: self.start(method, url, body, timeout_s=timeout_s, headers=headers, on_done=on_done)
+            )
         if isinstance(outcome, HttpError):
             raise outcome
         return outcome

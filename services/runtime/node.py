@@ -18,6 +18,7 @@ from services.runtime.clock import Clock
 from services.runtime.edge.encoding import Encoding
 from services.runtime.errors import NodeError
 from services.runtime.http_client import HttpClient
+from services.runtime.lockstep import agent as lockstep
 from services.runtime.logger import NodeLogger
 from services.runtime.node_parameters import ParametersMixin
 from services.runtime.parameter import Parameter
@@ -41,7 +42,7 @@ from services.runtime.settings import NodeSettings, node_settings, reachable_hos
 from services.runtime.subscription import RawSubscription, Subscription
 from services.runtime.timer import Timer
 from shared_models import Message, ServiceType, resolve_node_name
-from shared_models.builtin_interfaces import Time
+from shared_models.builtin_interfaces import Time, split_seconds
 from shared_models.rcl_interfaces import Log, ParameterDescriptor, ParameterEvent
 
 __all__ = ["Node"]
@@ -99,6 +100,7 @@ class Node(ParametersMixin):
         )
         self._name = self._names.full_node_name
         self._clock = Clock(use_sim_time=self.settings.use_sim_time)
+        self._clock.driven = bool(self.settings.lockstep_url)
         self._app = NodeApp(
             self._name,
             token=self.settings.token,
@@ -113,6 +115,7 @@ class Node(ParametersMixin):
             on_service=self._app.add_service,
             on_changed=self._changed,
         )
+        self._participant.in_lockstep = bool(self.settings.lockstep_url)
         self._timers: list[Timer] = []
         self._subscriptions: list[Subscription] = []
         self._tasks: set[asyncio.Task[Any]] = set()
@@ -202,7 +205,7 @@ class Node(ParametersMixin):
     def _use_sim_time(self, enabled: bool) -> None:
         """Switch the clock (timers follow within a period); /clock is subscribed on first use."""
         self._clock.set_use_sim_time(enabled)
-        if enabled and self._clock_subscription is None:
+        if enabled and self._clock_subscription is None and not self._clock.driven:
             self._clock_subscription = self.create_subscription(Time, _CLOCK, self._clock.set_sim_time, 1)
 
     # -- entities -----------------------------------------------------------------------------
@@ -314,6 +317,21 @@ class Node(ParametersMixin):
             self._participant.foreign = list(participants)
             self._changed()
 
+    def lockstep_state(self) -> tuple[bool, list[tuple[str, str, int]], list[tuple[str, str, int]]]:
+        """For a lockstep run (:mod:`services.runtime.lockstep`): whether the node has work now
+        (a message or a due timer waiting for its callback, a callback running, a link
+        connecting), and the messages it sent and received, per topic and node at the other end."""
+        busy = any(not s.idle for s in self._subscriptions) or any(t.busy for t in self._timers)
+        sent, received, connecting = self._participant.lockstep_counts()
+        return busy or connecting, sent, received
+
+    def lockstep_set_clock(self, time_s: float) -> None:
+        """For a lockstep run: move the node's sim clock to ``time_s`` (its timers fire as on a
+        /clock message); nothing when the node runs on the wall clock."""
+        if self._clock.use_sim_time:
+            sec, nanosec = split_seconds(time_s)
+            self._clock.set_sim_time(Time(sec=sec, nanosec=nanosec))
+
     def describe(self):  # type: ignore[no-untyped-def]
         """What this node tells the core about itself (a NodeDescription)."""
         return self._participant.describe()
@@ -366,12 +384,15 @@ class Node(ParametersMixin):
             self._spawn(subscription.run(self._logger.logger))
         for timer in self._timers:
             self._spawn(timer.run(self._logger.logger))
+        if self.settings.lockstep_url:
+            lockstep.join(self, self.settings.lockstep_url)
 
     async def stop(self) -> None:
         """Stop serving and end every task of the node."""
         if not self._running:
             return
         self._running = False
+        await lockstep.leave(self)
         self._participant.stop_links()
         for task in list(self._tasks):
             task.cancel()

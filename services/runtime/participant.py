@@ -56,6 +56,8 @@ class Participant:
         self.links: dict[tuple[str, str], tuple[PublisherLink, asyncio.Task[None]]] = {}
         # Other systems' participants it bridges to (a ROS 2 bridge's ROS 2 nodes), for the graph
         self.foreign: list[ForeignNode] = []
+        # In a lockstep run (services.runtime.lockstep): links tell publishers who reads.
+        self.in_lockstep = False
         self._spawn: Spawn | None = None
         self._on_endpoint = on_endpoint
         self._on_service = on_service
@@ -148,12 +150,16 @@ class Participant:
             isinstance(tap, RawSubscription) and tap.encoding is Encoding.JSON for tap in endpoint.taps
         )
         encoding = Encoding.JSON if raw_only else Encoding.MSGPACK
+        names = {p.url.rstrip("/"): p.node for p in publishers}
+        reader = self.name if self.in_lockstep else ""
         for url in wanted:
             if (topic, url) not in self.links:
                 link = PublisherLink(
                     url,
                     topic,
                     endpoint.receive_link_frame,
+                    publisher=names.get(url, ""),
+                    reader=reader,
                     encoding=encoding,
                     queue_size=queue_size,
                     max_message_bytes=self.settings.max_message_bytes,
@@ -162,6 +168,19 @@ class Participant:
                     token=self.settings.token,
                 )
                 self.links[(topic, url)] = (link, self._spawn(link.run()))
+
+    def lockstep_counts(self) -> tuple[list[tuple[str, str, int]], list[tuple[str, str, int]], bool]:
+        """For a lockstep run: messages handed to each counted reader (topic, reader, count),
+        messages each link delivered (topic, publisher, count), and whether a link is still
+        connecting (a subscriber that is not yet linked would miss what is published now)."""
+        sent = [
+            (endpoint.name, reader, count)
+            for endpoint in self.endpoints.values()
+            for reader, count in endpoint.sent_to_readers()
+        ]
+        received = [(link.topic, link.publisher, link.received) for link, _ in self.links.values()]
+        connecting = any(not link.connected.is_set() for link, _ in self.links.values())
+        return sent, received, connecting
 
     def is_linked(self, topic: str) -> bool:
         """Whether ``topic`` reaches this participant from at least one publisher now (a link is

@@ -8,6 +8,7 @@ from collections.abc import Callable
 from typing import Any
 
 from services.runtime.errors import NodeError, SkydeckError
+from services.runtime.lockstep.activity import ACTIVITY
 from shared_models import Message, ServiceType
 
 __all__ = ["Service", "ServiceHandlerError"]
@@ -35,12 +36,13 @@ class Service:
         """Run the handler for ``request`` and return a checked response."""
         response_type = self.srv_type.Response
         try:
-            if self._passes_response:
-                result = self.handler(request, response_type())
-            else:
-                result = self.handler(request)
-            if inspect.isawaitable(result):
-                result = await result
+            with ACTIVITY.working():  # a lockstep run waits for the handler (services.runtime.lockstep)
+                if self._passes_response:
+                    result = self.handler(request, response_type())
+                else:
+                    result = self.handler(request)
+                if inspect.isawaitable(result):
+                    result = await result
         except ServiceHandlerError:
             raise  # already reported where it happened (a façade prints the user's traceback)
         except Exception as error:

@@ -112,6 +112,9 @@ class NodeSettings(ProcessSettings):
     core_url: str = DEFAULT_CORE_URL
     use_sim_time: bool = False
     service_timeout_s: float = Field(default=10.0, gt=0)
+    # A lockstep run's coordinator (services.runtime.lockstep): set by `skydeck grade` for the
+    # processes it starts, so that the world waits for their nodes; empty: run free.
+    lockstep_url: str = ""
     # How long the node waits for the core quietly before saying it waits: a launch that starts
     # a node beside its core (both starting) sets it; 0 says so at the first refused connection.
     core_start_grace_s: float = Field(default=0.0, ge=0)

@@ -51,6 +51,7 @@ class Subscription:
         self._plain = not inspect.iscoroutinefunction(callback)
         self._mean_call_s: float | None = None
         self._calling = False
+        self._awaiting = 0  # coroutine callbacks started and not yet finished
 
     def receive(self, msg: Message) -> None:
         """A message from a socket; a quick plain callback may be called right here.
@@ -81,7 +82,13 @@ class Subscription:
     def _call_inline(self, msg: Message) -> None:
         pending = self._call_now(msg)
         if pending is not None:
+            self._awaiting += 1
             asyncio.ensure_future(self._finish(pending))
+
+    @property
+    def idle(self) -> bool:
+        """Nothing queued and no callback running (what a lockstep run waits for)."""
+        return not self._queue and not self._calling and not self._awaiting
 
     async def run(self, logger: logging.Logger) -> None:
         """Deliver queued messages to the callback until cancelled."""
@@ -92,18 +99,27 @@ class Subscription:
             self._ready.clear()
             while queue:
                 msg = queue.popleft()
+                self._awaiting += 1
                 if not self._plain:
-                    await call_user(self.callback, msg, logger=logger, what=self._what)
+                    try:
+                        await call_user(self.callback, msg, logger=logger, what=self._what)
+                    finally:
+                        self._awaiting -= 1
                     continue
                 pending = self._call_now(msg)
-                if pending is not None:
+                if pending is None:
+                    self._awaiting -= 1
+                else:
                     await self._finish(pending)
 
     async def _finish(self, pending: Awaitable[Any]) -> None:
+        """Await what a callback returned; ends one of ``_awaiting``."""
         try:
             await pending
         except Exception:
             self._logger.exception("%s raised; the node keeps running", self._what)
+        finally:
+            self._awaiting -= 1
 
     def _call_now(self, msg: Message) -> Awaitable[Any] | None:
         """Call the callback, timed; returns what it returned if that must still be awaited."""

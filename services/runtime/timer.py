@@ -24,6 +24,8 @@ class Timer:
         self._clock = clock
         self._canceled = False
         self._reset = asyncio.Event()
+        self._due_s: float | None = None  # when the next call is due, once running
+        self._calling = False
 
     def cancel(self) -> None:
         """Stop calling the callback."""
@@ -39,12 +41,22 @@ class Timer:
         self._canceled = False
         self._reset.set()
 
+    @property
+    def busy(self) -> bool:
+        """On sim time: whether a call is due or running (what a lockstep run waits for). A
+        wall-clock timer is never waited for: its calls belong to no step of the world."""
+        if not self._clock.use_sim_time or self._canceled:
+            return False
+        due_s = self._due_s
+        return self._calling or (due_s is not None and due_s <= self._clock.now_s())
+
     async def run(self, logger: logging.Logger) -> None:
         """Tick until cancelled (the task is owned by the node)."""
         clock = self._clock
         what = f"timer callback {getattr(self.callback, '__qualname__', self.callback)!r}"
-        due_s = clock.now_s() + self.timer_period_s
+        due_s = self._due_s = clock.now_s() + self.timer_period_s
         while True:
+            self._due_s = due_s
             period_s = self.timer_period_s  # read every tick: a new period takes effect at once
             sleeper = asyncio.ensure_future(clock.sleep_until(due_s))
             resetter = asyncio.ensure_future(self._reset.wait())
@@ -63,7 +75,11 @@ class Timer:
             if clock.use_sim_time and clock.now_s() < due_s:  # sim time jumped back (a restarted simulator)
                 due_s = clock.now_s() + period_s
                 continue
-            await call_user(self.callback, logger=logger, what=what)
+            self._calling = True
+            try:
+                await call_user(self.callback, logger=logger, what=what)
+            finally:
+                self._calling = False
             due_s += period_s
             now_s = clock.now_s()
             if due_s <= now_s:  # fell behind (slow callback or paused clock): skip, don't burst

@@ -3,7 +3,7 @@ Gazebo + fake MAVROS).
 
     skydeck run sim --seed 1 --boxes 8 --speed max
 
-It publishes (sim-time rates) ``/drone/pose`` 60 Hz, ``/clock`` with every pose,
+It publishes (sim-time rates) ``/drone/pose`` 60 Hz, ``/clock`` with every pose (``WorldNode``),
 ``/simulator/boxes`` 10 Hz (latched), ``/drone/state`` 5 Hz, ``/simulator/world`` (latched) once
 per build of the world (at start and at every reset: a new random id each time), and
 ``/simulator/camera`` (JPEG) and ``/simulator/camera/image_raw`` (rgb8) at ``--camera-rate``
@@ -99,7 +99,6 @@ class DroneSimNode(WorldNode[DroneSettings]):
                 pose=Pose(position=Point(x=x, y=y, z=z), orientation=Quaternion(x=qx, y=qy, z=qz, w=qw)),
             )
         )
-        self.clock_publisher.publish_built(header.stamp.model_copy)
         if steps % BOXES_EVERY_STEPS == 0:
             boxes = self.world.boxes_poses()
             self.boxes_publisher.publish_built(lambda: _boxes_message(header.model_copy(), boxes))

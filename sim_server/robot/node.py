@@ -165,7 +165,6 @@ class RobotSimNode(WorldNode[RobotSettings]):
         world = self.world
         sec, nanosec = split_seconds(world.time_s)
         stamp = {"sec": sec, "nanosec": nanosec}
-        self.clock_publisher.publish_built(lambda: Time.model_validate(stamp))
         scanning = steps % SCAN_EVERY_STEPS == 0
         transforms = []
         for robot in self.robots:

@@ -3,7 +3,10 @@
 //     node roslibjs_client.mjs URL SCENARIO
 //
 // Prints one JSON object per line for the test to check; exits 0 when the scenario ran.
-import { Ros, Service, Topic } from "roslib";
+// TF: tf_ros1 (ROSLIB.TFClient: ROS 1's actionlib action /tf2_web_republisher over rosbridge
+// topics) and tf_ros2 (ROSLIB.ROS2TFClient: ROS 2's action, send_action_goal) follow the carrot
+// and the post in the world frame until the carrot has moved five times.
+import { ROS2TFClient, Ros, Service, TFClient, Topic } from "roslib";
 
 const [url, scenario] = process.argv.slice(2);
 const emit = (values) => console.log(JSON.stringify(values));
@@ -66,6 +69,22 @@ async function host(ros) {
   other.close();
 }
 
+async function follow(ros, Client) {
+  const client = new Client({ ros, fixedFrame: "world", angularThres: 0.01, transThres: 0.01, rate: 20.0 });
+  const carrots = [];
+  const posts = [];
+  client.subscribe("post", (transform) => posts.push(transform));
+  await within(20000, "five carrot transforms", new Promise((resolve) => {
+    client.subscribe("/carrot", (transform) => {
+      carrots.push({ translation: { ...transform.translation }, rotation: { ...transform.rotation } });
+      if (carrots.length === 5) resolve();
+    });
+  }));
+  emit({ carrots, posts: posts.map((transform) => ({ translation: { ...transform.translation } })) });
+  client.dispose();
+  await sleep(300); // the cancel goes out before the connection closes
+}
+
 function connect(address) {
   return within(10000, "connection", new Promise((resolve, reject) => {
     const ros = new Ros({ url: address });
@@ -77,7 +96,8 @@ function connect(address) {
 try {
   const ros = await connect(url);
   emit({ connected: true });
-  await { tour, host }[scenario](ros);
+  const scenarios = { tour, host, tf_ros1: () => follow(ros, TFClient), tf_ros2: () => follow(ros, ROS2TFClient) };
+  await scenarios[scenario](ros);
   ros.close();
   process.exit(0);
 } catch (error) {

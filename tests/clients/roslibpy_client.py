@@ -4,6 +4,8 @@
 
 Prints one JSON object per line for the test to check; ``hosted`` waits for a line on stdin
 before it ends (the test calls the hosted service meanwhile). Exit 0 when the scenario ran.
+Round trips: ``tf`` (roslibpy.tf.TFClient, through the republish_tfs service and its topic),
+``params`` (roslibpy.Param on ROS 1 names), ``echo`` (one connection hears its own messages).
 """
 
 from __future__ import annotations
@@ -14,6 +16,9 @@ import threading
 import time
 
 import roslibpy
+from roslibpy.tf import TFClient
+
+ROUND_TRIP_TIMEOUT_S = 20
 
 
 def emit(**values: object) -> None:
@@ -220,6 +225,62 @@ def fences(ros: roslibpy.Ros) -> None:
     emit(after=_call(ros, "/rosapi/topic_type", "rosapi_msgs/srv/TopicType", {"topic": "/clock"}))
 
 
+def tf(ros: roslibpy.Ros) -> None:
+    client = TFClient(ros, fixed_frame="/world", angular_threshold=0.01, translation_threshold=0.01, rate=20.0)
+    carrots: list[dict] = []
+    posts: list[dict] = []
+    moved = threading.Event()
+
+    def on_carrot(transform: dict) -> None:
+        carrots.append(transform)
+        if len(carrots) >= 5:
+            moved.set()
+
+    client.subscribe("carrot", on_carrot)
+    client.subscribe("/post", posts.append)
+    if not moved.wait(ROUND_TRIP_TIMEOUT_S):
+        raise SystemExit(f"only {len(carrots)} carrot transforms in {ROUND_TRIP_TIMEOUT_S} s")
+    emit(carrots=carrots[:5], posts=posts, topic=client.current_topic.name)
+    client.dispose()
+
+
+def params(ros: roslibpy.Ros) -> None:
+    speed = roslibpy.Param(ros, "/robot/max_speed")
+    emit(unset=speed.get(timeout=10))
+    speed.set(1.5, timeout=10)
+    emit(set=speed.get(timeout=10))
+    roslibpy.Param(ros, "/robot/name").set("neato", timeout=10)
+    emit(namespace=roslibpy.Param(ros, "/robot").get(timeout=10))
+    emit(names=[name for name in ros.get_params() if name.startswith("/robot/")])
+    speed.delete(timeout=10)
+    emit(deleted=speed.get(timeout=10))
+
+
+def echo(ros: roslibpy.Ros) -> None:
+    # Two Topic objects (one connection): roslibpy's unsubscribe and unadvertise on one object
+    # both remove its reconnect handler, and the second raises KeyError (roslibpy 2.1's own bug).
+    listener = roslibpy.Topic(ros, "/chatter", "std_msgs/msg/String")
+    chatter = roslibpy.Topic(ros, "/chatter", "std_msgs/msg/String")
+    heard: list[str] = []
+    three = threading.Event()
+
+    def hear(message: dict) -> None:
+        heard.append(message["data"])
+        if len(heard) == 3:
+            three.set()
+
+    listener.subscribe(hear)
+    chatter.advertise()
+    time.sleep(0.5)  # as with ROS: the subscription links to the new publisher in a moment
+    for n in range(3):
+        chatter.publish(roslibpy.Message({"data": f"hello {n}"}))
+    if not three.wait(ROUND_TRIP_TIMEOUT_S):
+        raise SystemExit(f"heard {heard} of its own three messages")
+    emit(heard=heard)
+    listener.unsubscribe()
+    chatter.unadvertise()
+
+
 def main() -> None:
     url, scenario = sys.argv[1], sys.argv[2]
     headers = {"Authorization": f"Bearer {sys.argv[3]}"} if len(sys.argv) > 3 and sys.argv[3] else None
@@ -227,7 +288,8 @@ def main() -> None:
     ros.run(timeout=15)
     emit(connected=ros.is_connected)
     try:
-        scenarios = {"tour": tour, "hosted": hosted, "rosapi": rosapi, "stuck": stuck, "workshop": workshop, "fences": fences}
+        scenarios = {"tour": tour, "hosted": hosted, "rosapi": rosapi, "stuck": stuck, "workshop": workshop,
+                     "fences": fences, "tf": tf, "params": params, "echo": echo}  # fmt: skip
         scenarios[scenario](ros)
     finally:
         ros.terminate()

@@ -23,7 +23,6 @@ node (:class:`CoreTransport`), and the client shows in the graph as reading them
 from __future__ import annotations
 
 import asyncio
-import json
 from collections.abc import Callable, Sequence
 from typing import Any
 
@@ -32,7 +31,7 @@ from pydantic import Field, ValidationError
 from services.access import Verb
 from services.core.service_calls import ServiceCallFailed
 from services.protocols.ops import Refused
-from services.protocols.rosbridge.frames import fragments
+from services.protocols.rosbridge.frames import Replies
 from services.protocols.rosbridge.ops import RosbridgeOp
 from services.protocols.session import ClientSession
 from services.runtime.actions.client import ActionClient, ClientGoal
@@ -123,14 +122,17 @@ class _Goal:
 class ActionGoals:
     """One connection's goals (see the module docstring)."""
 
-    def __init__(self, session: ClientSession) -> None:
+    def __init__(self, session: ClientSession, replies: Replies) -> None:
         self._session = session
+        self._replies = replies
         self._clients: dict[tuple[str, str], ActionClient] = {}  # one per action (and type)
         self._goals: dict[str | int | None, _Goal] = {}
 
     async def send_goal(self, op: SendActionGoal) -> None:
-        if op.compression not in (None, "none"):
-            raise Refused(f"compression {op.compression!r} is not supported: leave it out or use 'none'")
+        try:
+            Replies.check(op.compression)
+        except ValueError as error:
+            raise Refused(f"send_action_goal: {error}") from None
         if op.id is not None and op.id in self._goals:
             raise Refused(f"a goal with id {op.id!r} is in flight on this connection: give each goal its own id")
         if len(self._goals) >= _MAX_GOALS_IN_FLIGHT:
@@ -224,12 +226,8 @@ class ActionGoals:
     async def _send(self, goal: _Goal, message: dict[str, Any]) -> None:
         if goal.op.id is not None:
             message["id"] = goal.op.id
-        text = json.dumps(message)
-        size = goal.op.fragment_size
-        if size and len(text) > size:
-            for piece in fragments(lambda frame: ({"type": "websocket.send", "text": frame},), size, goal.op.action)(text):
-                await self._session.send_text(piece["text"])
-        else:
+        op = goal.op
+        for text in self._replies.texts(message, compression=op.compression, fragment_size=op.fragment_size, label=op.action):
             await self._session.send_text(text)
 
 

@@ -9,7 +9,7 @@ in :mod:`.frames`.
 from __future__ import annotations
 
 import json
-from typing import Any
+from typing import Any, Literal
 
 from pydantic import Field
 
@@ -47,6 +47,8 @@ class RosbridgeOp(Op):
 class Advertise(RosbridgeOp):
     topic: str
     type: str
+    latch: bool = False  # roslibjs's and roslibpy's: the latest message goes to late subscribers
+    queue_size: int = Field(default=100, ge=0)  # read as rosbridge_suite reads it, not used (every reader has its own queue)
 
 
 class Unadvertise(RosbridgeOp):
@@ -55,7 +57,8 @@ class Unadvertise(RosbridgeOp):
 
 class Publish(RosbridgeOp):
     topic: str
-    msg: dict[str, Any]
+    msg: dict[str, Any] = Field(default_factory=dict)
+    latch: bool = False  # for a topic published without an advertise first
 
 
 class Subscribe(RosbridgeOp):
@@ -64,7 +67,7 @@ class Subscribe(RosbridgeOp):
     throttle_rate: int = Field(default=0, ge=0)  # ms between messages
     queue_length: int = Field(default=0, ge=0, le=10_000)
     fragment_size: int | None = Field(default=None, gt=0)
-    compression: str | None = None
+    compression: Literal["none", "png", "cbor", "cbor-raw"] | None = None
 
 
 class Unsubscribe(RosbridgeOp):
@@ -82,7 +85,7 @@ class CallService(RosbridgeOp):
 
 class ServiceResponse(RosbridgeOp):
     service: str
-    values: Any = None
+    values: Any = None  # the response's fields; a text with result false is the reason it failed
     result: bool = True
 
 
@@ -100,7 +103,15 @@ class SetLevel(RosbridgeOp):
 
 
 class Auth(RosbridgeOp):
-    mac: str  # the token (rosauth's other fields are not used)
+    """ROS 1's rosauth op: ``mac`` is the token itself, or rosauth's MAC made with it (:mod:`.auth`)."""
+
+    mac: str
+    client: str = ""
+    dest: str = ""
+    rand: str = ""
+    t: float | dict[str, int] = 0
+    level: str = ""
+    end: float | dict[str, int] = 0
 
 
 class Fragment(RosbridgeOp):
@@ -111,7 +122,8 @@ class Fragment(RosbridgeOp):
 
 
 def request_body(args: dict[str, Any] | list[Any] | None, request_type: type[Message] | None) -> bytes:
-    """A call's ``args`` as a request body: an object as it is, a list in field order."""
+    """A call's ``args`` as a request body: an object as it is, a list in field order; ROS 1's
+    time fields under ROS 2's names (roslibpy's TFClient sends its timeout ``{secs, nsecs}``)."""
     if args is None:
         return b""
     if isinstance(args, list):
@@ -123,12 +135,13 @@ def request_body(args: dict[str, Any] | list[Any] | None, request_type: type[Mes
         if len(args) > len(names):
             raise Refused(f"{len(args)} args for {len(names)} request fields ({', '.join(names)})")
         args = dict(zip(names, args, strict=False))
-    return json.dumps(args).encode()
+    return ros2_time_names(json.dumps(args), args).encode()
 
 
 def ros2_time_names(text: str, msg: dict[str, Any]) -> str:
     """A published message's JSON with ROS 1's time fields (``{"secs": 0, "nsecs": 0}``, as
-    roslibpy's and roslibjs's actionlib stamp a goal) under ROS 2's names (``sec``, ``nanosec``);
+    roslibpy's and roslibjs's actionlib stamp a goal) under ROS 2's names (``sec``, ``nanosec``),
+    or left out where ROS 2's are there too;
     ``text`` (``msg`` as JSON) as it is when it has none, which a substring test tells cheaply."""
     if '"secs"' not in text and '"nsecs"' not in text:
         return text
@@ -138,8 +151,11 @@ def ros2_time_names(text: str, msg: dict[str, Any]) -> str:
             return [renamed(item) for item in value]
         if not isinstance(value, dict):
             return value
-        if ("secs" in value or "nsecs" in value) and "sec" not in value and "nanosec" not in value:
-            value = {_ROS1_TIME.get(key, key): item for key, item in value.items()}
+        if "secs" in value or "nsecs" in value:
+            if "sec" not in value and "nanosec" not in value:
+                value = {_ROS1_TIME.get(key, key): item for key, item in value.items()}
+            else:  # both names, as the core sends ROS 1's types (:mod:`.ros1_times`) and a client echoes
+                value = {key: item for key, item in value.items() if key not in _ROS1_TIME}
         return {key: renamed(item) for key, item in value.items()}
 
     return json.dumps(renamed(msg))

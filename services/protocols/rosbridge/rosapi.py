@@ -2,28 +2,25 @@
 
 The core hosts them as the node ``/rosapi`` (a guest: see :mod:`services.core.guests`), so a
 rosbridge client calls ``/rosapi/topics`` (or ``rosapi/topics``: names resolve against ``/``),
-and so can ``curl -X POST http://CORE/rosapi/topics`` or any node. Parameters go to each node's
-own parameter services (:mod:`services.protocols.parameters`); the time is ``/clock``'s latest message while a
-simulator publishes it, else the wall clock.
+and so can ``curl -X POST http://CORE/rosapi/topics`` or any node. They answer as ROS 2's
+rosapi (humble) does, with ROS 1's services beside (``search_param``, ``service_host``), so a
+client written for either finds what it calls. Parameters are :mod:`.rosapi_params`'; the time is
+``/clock``'s latest message while a simulator publishes it, else the wall clock (:mod:`.clock`).
 """
 
 from __future__ import annotations
 
 import json
 import re
-import time
 from collections.abc import Callable
 from typing import Any
+from urllib.parse import urlsplit
 
+import services.protocols.rosbridge.clock as clock
 from services.core.access import CoreAccess
-from services.core.service_calls import CALLER
 from services.protocols import ROS_DISTRO
-from services.protocols.parameters import (
-    ParameterError,
-    Parameters,
-    ParameterValueJson,
-    split_name,
-)
+from services.protocols.rosbridge.rosapi_params import RosapiParams
+from services.runtime.actions.names import actions_in_graph
 from services.runtime.service import Service
 from shared_models import (
     InvalidNameError,
@@ -31,25 +28,29 @@ from shared_models import (
     ServiceType,
     UnknownInterfaceError,
     get_interface,
+    interface_names,
     resolve_name,
 )
 from shared_models import rosapi_msgs as rosapi
-from shared_models.builtin_interfaces import Time
 from shared_models.interfaces import field_types
+from shared_models.ros2msg import definition_text
 
 __all__ = ["host_rosapi", "typedefs"]
 
 _BRACKETS = re.compile(r"\[(<=)?(\d*)\]$")
+_ACTIONLIB_TOPICS = frozenset({"goal", "cancel", "status", "feedback", "result"})
 
 
 def host_rosapi(access: CoreAccess) -> None:
     """Serve the rosapi services as the guest node ``/rosapi``."""
     guest = access.guests.add("/rosapi", client="rosapi (answered by the core)")
     api = _Rosapi(access)
+    params = RosapiParams(access)
     handlers: dict[str, tuple[type[ServiceType], Callable[[Any], Any]]] = {
         "topics": (rosapi.Topics, api.topics),
         "topics_for_type": (rosapi.TopicsForType, api.topics_for_type),
         "topic_type": (rosapi.TopicType, api.topic_type),
+        "topics_and_raw_types": (rosapi.TopicsAndRawTypes, api.topics_and_raw_types),
         "publishers": (rosapi.Publishers, api.publishers),
         "subscribers": (rosapi.Subscribers, api.subscribers),
         "services": (rosapi.Services, api.services),
@@ -57,14 +58,21 @@ def host_rosapi(access: CoreAccess) -> None:
         "service_type": (rosapi.ServiceType_, api.service_type),
         "service_node": (rosapi.ServiceNode, api.service_node),
         "service_providers": (rosapi.ServiceProviders, api.service_providers),
+        "service_host": (rosapi.ServiceHost, api.service_host),
+        "action_servers": (rosapi.GetActionServers, api.action_servers),
+        "action_type": (rosapi.ActionType_, api.action_type),
         "nodes": (rosapi.Nodes, api.nodes),
         "node_details": (rosapi.NodeDetails, api.node_details),
         "message_details": (rosapi.MessageDetails, api.message_details),
         "service_request_details": (rosapi.ServiceRequestDetails, api.service_request_details),
         "service_response_details": (rosapi.ServiceResponseDetails, api.service_response_details),
-        "get_param": (rosapi.GetParam, api.get_param),
-        "set_param": (rosapi.SetParam, api.set_param),
-        "get_param_names": (rosapi.GetParamNames, api.get_param_names),
+        "interfaces": (rosapi.Interfaces, api.interfaces),
+        "get_param": (rosapi.GetParam, params.get_param),
+        "set_param": (rosapi.SetParam, params.set_param),
+        "delete_param": (rosapi.DeleteParam, params.delete_param),
+        "has_param": (rosapi.HasParam, params.has_param),
+        "search_param": (rosapi.SearchParam, params.search_param),
+        "get_param_names": (rosapi.GetParamNames, params.get_param_names),
         "get_time": (rosapi.GetTime, api.get_time),
         "get_ros_version": (rosapi.GetROSVersion, api.get_ros_version),
     }
@@ -131,11 +139,6 @@ class _Rosapi:
     def __init__(self, access: CoreAccess) -> None:
         self._access = access
         self._registry = access.registry
-        # Parameters are read and set with the rights of whoever called rosapi (CALLER: a student
-        # reaches the parameters of their own nodes only), not with the core's.
-        self._parameters = Parameters(
-            access.registry, lambda service, body: access.calls.call(service, body, caller=CALLER.get())
-        )
 
     def _graph(self) -> dict[str, Any]:
         return self._registry.graph()
@@ -153,6 +156,18 @@ class _Rosapi:
     def topic_type(self, request: rosapi.TopicTypeRequest) -> rosapi.TopicTypeResponse:
         name = _absolute(request.topic)
         return rosapi.TopicTypeResponse(type=(self._registry.topic_type(name) or "") if name else "")
+
+    def topics_and_raw_types(self, request: Any) -> rosapi.TopicsAndRawTypesResponse:
+        """Every topic with its type and that type's whole definition (``rosbag2``'s text: the
+        type's fields, then each type it uses after a line of ``=`` and ``MSG: pkg/Name``)."""
+        topics = self._graph()["topics"]
+        texts = []
+        for topic in topics:
+            cls = _lookup(topic["type"], Message)
+            texts.append(definition_text(cls) if cls is not None else "")
+        return rosapi.TopicsAndRawTypesResponse(
+            topics=[t["name"] for t in topics], types=[t["type"] for t in topics], typedefs_full_text=texts
+        )
 
     def publishers(self, request: rosapi.PublishersRequest) -> rosapi.PublishersResponse:
         name = _absolute(request.topic)
@@ -187,6 +202,32 @@ class _Rosapi:
         service = self._service(request.service)
         return rosapi.ServiceProvidersResponse(providers=[service["node"]] if service else [])
 
+    def service_host(self, request: rosapi.ServiceHostRequest) -> rosapi.ServiceHostResponse:
+        """The host of the node serving a service (ROS 1's rosapi: the host of its URI)."""
+        service = self._service(request.service)
+        node = self._registry.nodes.get(service["node"]) if service else None
+        host = urlsplit(node.description.url).hostname if node is not None and node.description.url else None
+        return rosapi.ServiceHostResponse(host=host or "")
+
+    # -- actions --------------------------------------------------------------------------------
+
+    def action_servers(self, request: Any) -> rosapi.GetActionServersResponse:
+        """ROS 2's actions with a server, and ROS 1 actionlib's: a namespace with all five of
+        ``goal``, ``cancel``, ``status``, ``feedback`` and ``result`` topics (ROS 1's rosapi's rule)."""
+        graph = self._graph()
+        names = set(actions_in_graph(graph))
+        parts: dict[str, set[str]] = {}
+        for topic in graph["topics"]:
+            namespace, _, last = topic["name"].rpartition("/")
+            if namespace:
+                parts.setdefault(namespace, set()).add(last)
+        names |= {namespace for namespace, found in parts.items() if found >= _ACTIONLIB_TOPICS}
+        return rosapi.GetActionServersResponse(action_servers=sorted(names))
+
+    def action_type(self, request: rosapi.ActionTypeRequest) -> rosapi.ActionTypeResponse:
+        found = actions_in_graph(self._graph()).get(_absolute(request.action))
+        return rosapi.ActionTypeResponse(type=found.type if found is not None else "")
+
     # -- nodes ----------------------------------------------------------------------------------
 
     def nodes(self, request: Any) -> rosapi.NodesResponse:
@@ -203,6 +244,9 @@ class _Rosapi:
 
     # -- types ----------------------------------------------------------------------------------
 
+    def interfaces(self, request: Any) -> rosapi.InterfacesResponse:
+        return rosapi.InterfacesResponse(interfaces=interface_names())
+
     def message_details(self, request: rosapi.MessageDetailsRequest) -> rosapi.MessageDetailsResponse:
         cls = _lookup(request.type, Message)
         return rosapi.MessageDetailsResponse(typedefs=typedefs(cls) if cls else [])
@@ -217,44 +261,10 @@ class _Rosapi:
         srv = _lookup(request.type, ServiceType)
         return rosapi.ServiceResponseDetailsResponse(typedefs=typedefs(srv.Response) if srv else [])
 
-    # -- parameters -----------------------------------------------------------------------------
-
-    async def get_param(self, request: rosapi.GetParamRequest) -> rosapi.GetParamResponse:
-        try:
-            split_name(request.name)
-            values = await self._parameters.get([request.name])
-        except ParameterError as error:
-            return rosapi.GetParamResponse(value=request.default_value, reason=str(error))
-        if not values:
-            return rosapi.GetParamResponse(value=request.default_value, reason=f"{request.name} is not set")
-        return rosapi.GetParamResponse(value=json.dumps(values[0].value), successful=True)
-
-    async def set_param(self, request: rosapi.SetParamRequest) -> rosapi.SetParamResponse:
-        try:
-            value = json.loads(request.value)
-        except ValueError:
-            return rosapi.SetParamResponse(reason=f"the value must be JSON text, got {request.value!r}")
-        try:
-            (result,) = await self._parameters.set([ParameterValueJson(request.name, value)])
-        except ParameterError as error:
-            return rosapi.SetParamResponse(reason=str(error))
-        return rosapi.SetParamResponse(successful=result[1], reason=result[2])
-
-    async def get_param_names(self, request: Any) -> rosapi.GetParamNamesResponse:
-        names = await self._parameters.names()
-        return rosapi.GetParamNamesResponse(names=[name.replace(".", ":", 1) for name in names])
-
     # -- time and version -----------------------------------------------------------------------
 
     async def get_time(self, request: Any) -> rosapi.GetTimeResponse:
-        if self._registry.publishers("/clock"):
-            frame = await self._access.gateway.latest_frame("/clock")
-            if frame is not None:
-                try:
-                    return rosapi.GetTimeResponse(time=Time.model_validate_json(frame))
-                except ValueError:
-                    pass  # a /clock of another type: the wall clock answers
-        return rosapi.GetTimeResponse(time=Time.from_nsec(time.time_ns()))
+        return rosapi.GetTimeResponse(time=await clock.current(self._access))
 
     def get_ros_version(self, request: Any) -> rosapi.GetROSVersionResponse:
         return rosapi.GetROSVersionResponse(version=2, distro=ROS_DISTRO)

@@ -17,9 +17,11 @@ import time
 from typing import TYPE_CHECKING, Any
 
 from services.ros.errors import RosFacadeError
+from services.ros.pacing import thread_waits_for_work
 from services.ros.rclpy.context import Context, default_context
 from services.ros.rclpy.task import Future
 from services.ros.rclpy.waitable import Job, Waitable
+from services.runtime.lockstep.activity import ACTIVITY
 
 if TYPE_CHECKING:
     from services.ros.rclpy.node import Node
@@ -138,6 +140,7 @@ class Executor:
     def _next(self, timeout_sec: float | None) -> tuple[Waitable, Job] | None:
         """The next (entity, job) whose callback group lets it start; None when time is up."""
         deadline = None if timeout_sec is None or timeout_sec < 0 else time.monotonic() + timeout_sec
+        thread_waits_for_work()
         while self._spinning():
             left = _IDLE_WAKE_S if deadline is None else min(_IDLE_WAKE_S, deadline - time.monotonic())
             if left < 0:
@@ -165,11 +168,13 @@ class Executor:
         return None
 
     def _run(self, entity: Waitable, job: Job) -> None:
+        ACTIVITY.begin()  # a lockstep run waits for the callback
         try:
             job()
         except Exception as error:
             entity._node._rclpy_report(error, entity.what)
         finally:
+            ACTIVITY.end()
             if entity.callback_group is not None:
                 self._ended(entity.callback_group)
 

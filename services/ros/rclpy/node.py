@@ -31,6 +31,7 @@ from services.ros.rclpy.subscription import Subscription
 from services.ros.rclpy.timer import Rate, Timer
 from services.ros.rclpy.waitable import JobQueue, Waitable
 from services.ros.tracebacks import user_traceback
+from services.runtime.lockstep.activity import ACTIVITY
 from services.runtime.node import Node as RuntimeNode
 from services.runtime.parameter import Parameter
 from shared_models import Message, ServiceType
@@ -91,6 +92,7 @@ class Node:
         self._rclpy_clock = ROSClock(node.get_clock())
         self._rclpy_logger = node_logger(node, rosout=enable_rosout)
         self._rclpy_destroyed = False
+        ACTIVITY.watch(self, self._rclpy_has_work)  # a lockstep run waits for its callbacks
         bridge.start_node(node)
         wait_for_first_clock(node.get_clock())
 
@@ -392,6 +394,10 @@ class Node:
 
     def _rclpy_waitables(self) -> list[Waitable]:
         return [e for e in self._rclpy_entities if isinstance(e, Waitable)] + [self._rclpy_jobs]
+
+    def _rclpy_has_work(self) -> bool:
+        """Whether a callback of this node waits for the executor (a lockstep run waits for it)."""
+        return any(entity._has_work() for entity in self._rclpy_waitables())
 
     def _rclpy_dispatch(self, job: Callable[[], Any]) -> None:
         """Run ``job`` in the executor spinning this node (at once, where none does)."""

@@ -23,7 +23,7 @@ import time
 from typing import Any
 
 from services.ros.bridge import bridge
-from services.ros.pacing import wait_for_first_clock
+from services.ros.pacing import thread_waits_for_work, wait_for_first_clock
 from services.ros.rclpy.logging import node_logger
 from services.ros.rospy.core import process
 from services.ros.rospy.exceptions import CoreUnreachableException, ROSException
@@ -137,6 +137,7 @@ def spin() -> None:
     """Block until the node shuts down (Ctrl-C, ``signal_shutdown``); callbacks run meanwhile
     on their own threads."""
     process.require_node("rospy.spin")
+    thread_waits_for_work()
     try:
         while not process.wait(_SPIN_WAKE_S):
             pass

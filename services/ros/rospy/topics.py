@@ -23,6 +23,7 @@ from services.ros.rclpy.publisher import Publisher as LoopPublisher
 from services.ros.rospy.core import process, report
 from services.ros.rospy.graph import graph_topic
 from services.ros.rospy.log import logwarn_once
+from services.runtime.lockstep.activity import ACTIVITY
 from shared_models import Message
 
 __all__ = ["Publisher", "Subscriber", "check_message_class"]
@@ -100,6 +101,8 @@ class Subscriber:
         self._messages: collections.deque[Message] = collections.deque(maxlen=queue_size or None)
         self._arrival = threading.Condition()
         self._unregistered = False
+        self._delivering = False
+        ACTIVITY.watch(self, self._has_work)  # a lockstep run waits for its callbacks
         self._thread = threading.Thread(target=self._deliver, name=f"rospy subscriber {self.name}", daemon=True)
         self._thread.start()
         bridge.call(lambda: node.create_subscription(data_class, name, self._arrived, _LINK_DEPTH))
@@ -112,14 +115,19 @@ class Subscriber:
             self._messages.append(msg)
             self._arrival.notify()
 
+    def _has_work(self) -> bool:
+        return bool(self._messages) or self._delivering
+
     def _deliver(self) -> None:
         while True:
             with self._arrival:
+                self._delivering = False
                 while not self._messages and not self._unregistered:
                     self._arrival.wait()
                 if self._unregistered:
                     return
                 msg = self._messages.popleft()
+                self._delivering = True
             callback = self.callback
             if callback is None or process.is_shutdown():
                 continue

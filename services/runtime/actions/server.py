@@ -12,7 +12,9 @@ it picked was refused by ``on_cancel``; ``get_result`` answers when the goal has
 every goal held, and a goal is forgotten ``result_timeout_s`` after its result is set (ROS 2 since
 Jazzy keeps it 10 s after it ends).
 
-Policy is the caller's (the rclpy façade hands its callbacks to the program's executor):
+The server runs on a node, or on anything that offers what it uses of one (:class:`ActionHost`:
+the core hosts an action a rosbridge client serves). Policy is the caller's (the rclpy façade
+hands its callbacks to the program's executor):
 ``on_goal(goal) -> bool`` accepts a goal, ``on_cancel(goal) -> bool`` agrees to cancel one,
 ``on_accepted(goal)`` is told of each goal accepted (it calls ``goal.execute()`` when it runs it).
 Everything here runs on the node's event loop.
@@ -23,7 +25,7 @@ from __future__ import annotations
 import asyncio
 import logging
 from collections.abc import Awaitable, Callable
-from typing import Any
+from typing import Any, Protocol
 
 from services.runtime.actions.goals import (
     ACTIVE_STATUSES,
@@ -34,15 +36,26 @@ from services.runtime.actions.goals import (
 )
 from services.runtime.actions.messages import action_messages
 from services.runtime.actions.names import ActionNames
-from services.runtime.node import Node
-from shared_models import ActionType, Message
+from shared_models import ActionType, Message, ServiceType
 
-__all__ = ["ActionServer", "ServerGoal"]
+__all__ = ["ActionHost", "ActionServer", "ServerGoal"]
 
 logger = logging.getLogger("skydeck.runtime")
 
 _FEEDBACK_DEPTH = 10  # rclpy's feedback publisher: QoSProfile(depth=10)
 DEFAULT_RESULT_TIMEOUT_S = 10.0
+
+
+class ActionHost(Protocol):
+    """What an action server uses of the node it runs on (an SDK :class:`~services.runtime.node.Node` is one)."""
+
+    def resolve_topic_name(self, topic: str) -> str: ...
+
+    def create_publisher(self, msg_type: type[Any], topic: str, qos_profile: int = 10, *, latched: bool = False) -> Any: ...
+
+    def create_service(self, srv_type: type[ServiceType], srv_name: str, callback: Callable[..., Any]) -> Any: ...
+
+    def get_clock(self) -> Any: ...
 
 
 class ServerGoal:
@@ -107,7 +120,7 @@ class ActionServer:
 
     def __init__(
         self,
-        node: Node,
+        node: ActionHost,
         action_type: type[ActionType],
         name: str,
         *,

@@ -37,14 +37,20 @@ def stream_url(base_url: str, topic: str, **query: object) -> str:
 
 class PublisherLink:
     """Reads one publisher's stream of ``topic`` and hands every frame to ``on_frame`` (which
-    may be a batch of several messages)."""
+    may be a batch of several messages, and says how many it held: ``received`` counts them
+    since the link last connected).
+
+    ``reader``: this node's name, sent to the publisher when the node is in a lockstep run
+    (:mod:`services.runtime.lockstep`), so that both ends count the messages between them."""
 
     def __init__(
         self,
         publisher_url: str,
         topic: str,
-        on_frame: Callable[[str | bytes], None],
+        on_frame: Callable[[str | bytes], int],
         *,
+        publisher: str = "",
+        reader: str = "",
         queue_size: int,
         max_message_bytes: int,
         ping_interval_s: float,
@@ -53,8 +59,10 @@ class PublisherLink:
         encoding: Encoding = Encoding.MSGPACK,
     ) -> None:
         self.topic = topic
+        self.publisher = publisher
+        self.received = 0
         # Links take batches: a publisher's burst costs one frame (services.runtime.edge.batch).
-        self.url = stream_url(publisher_url, topic, queue=queue_size, batch=1)
+        self.url = stream_url(publisher_url, topic, queue=queue_size, batch=1, reader=reader or None)
         self._subprotocols = [Subprotocol(encoding.subprotocol)]
         self._on_frame = on_frame
         self._max_message_bytes = max_message_bytes
@@ -80,11 +88,12 @@ class PublisherLink:
                     ping_timeout=self._ping_timeout_s,
                     close_timeout=1.0,
                 ) as websocket:
+                    self.received = 0  # a new stream: the publisher counts afresh too
                     self.connected.set()
                     backoff_s = _BACKOFF_FIRST_S
                     on_frame = self._on_frame
                     async for frame in websocket:
-                        on_frame(frame)
+                        self.received += on_frame(frame)
             except (OSError, TimeoutError, InvalidHandshake, WebSocketException) as error:
                 if isinstance(error, InvalidURI):
                     logger.error("cannot subscribe to %s at %s: %s", self.topic, self.url, error)

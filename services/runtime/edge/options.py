@@ -1,4 +1,5 @@
-"""A topic socket's options, from its query string: ``?queue=N&rate=HZ&mode=publish&batch=1``."""
+"""A topic socket's options, from its query string: ``?queue=N&rate=HZ&mode=publish&batch=1``
+(and ``&reader=/NODE``: a node in a lockstep run, :mod:`services.runtime.lockstep`)."""
 
 from __future__ import annotations
 
@@ -8,6 +9,7 @@ from dataclasses import dataclass
 
 from services.runtime.edge.frames import FrameRejected
 from services.runtime.wire import DEFAULT_QUEUE, MAX_QUEUE, MAX_RATE_HZ, Close
+from shared_models.names import InvalidNameError, resolve_name
 
 __all__ = ["Mode", "StreamOptions"]
 
@@ -28,6 +30,7 @@ class StreamOptions:
     rate_hz: float | None = None
     mode: Mode = Mode.BOTH
     batch: bool = False  # a frame may carry several messages (services.runtime.edge.batch)
+    reader: str = ""  # the reading node, when it is in a lockstep run: what is sent to it is counted
 
     @classmethod
     def from_query(cls, query: Mapping[str, str]) -> StreamOptions:
@@ -58,7 +61,13 @@ class StreamOptions:
         batch = query.get("batch", "0")
         if batch not in ("0", "1"):
             raise FrameRejected(Close.POLICY, "batch must be 0 or 1")
-        return cls(queue=queue, rate_hz=rate_hz, mode=mode, batch=batch == "1")
+        reader = query.get("reader", "")
+        if reader:
+            try:
+                reader = resolve_name(reader)
+            except InvalidNameError as error:
+                raise FrameRejected(Close.POLICY, f"reader must be a node name: {error}") from None
+        return cls(queue=queue, rate_hz=rate_hz, mode=mode, batch=batch == "1", reader=reader)
 
     @property
     def reads(self) -> bool:

@@ -174,6 +174,7 @@ def test_public_api() -> None:
             "find_launch_file",
             "is_roslaunch_file",
             "launch_arguments",
+            "package_launch_file",
             "load_launch_file",
             "load_roslaunch_file",
             "plan_launch",

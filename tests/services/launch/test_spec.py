@@ -162,7 +162,7 @@ def test_unknown_field_names_its_place_and_the_allowed_fields(tmp_path: Path) ->
         """,
     )
     problem = _problem(path)
-    assert problem.startswith("nodes[1].colour: unknown field (allowed: name, run, port_offset,")
+    assert problem.startswith("nodes[1].colour: unknown field (allowed: name, package, run, port_offset,")
 
 
 def test_unknown_top_level_field(tmp_path: Path) -> None:

@@ -36,10 +36,41 @@ async def test_rosapi_reads_and_writes_parameters(bridge: Bridge, tuned: Tuned) 
         assert refused["values"] == {"successful": False, "reason": "parameter 'mode' is of type string; got integer 7"}
         missing = await call(ws, "/rosapi/get_param", "m", args={"name": "/tuned:nope", "default_value": "0"})
         assert missing["values"]["successful"] is False and missing["values"]["value"] == "0"
+        # A name without a node is ROS 1's (the core's parameter server), where it is not set.
         unnamed = await call(ws, "/rosapi/get_param", "u", args={"name": "max_speed"})
-        assert "/NODE.PARAMETER" in unnamed["values"]["reason"]
+        assert unnamed["values"] == {"value": "null", "successful": False, "reason": "/max_speed is not set"}
         not_json = await call(ws, "/rosapi/set_param", "j", args={"name": "/tuned:mode", "value": "{"})
         assert "JSON text" in not_json["values"]["reason"]
+
+
+async def test_rosapi_ros1_parameters_live_on_the_cores_parameter_server(bridge: Bridge) -> None:
+    """As ROS 1's rosapi: unset is JSON ``null`` (or the default, ``default`` as ROS 1 names it),
+    a namespace reads as a mapping, delete then has answers false."""
+    async with connect(bridge.rosbridge_url) as ws:
+        unset = await call(ws, "/rosapi/get_param", "a", args={"name": "/robot/max_speed"})
+        assert unset["values"]["value"] == "null" and unset["values"]["successful"] is False
+        defaulted = await call(ws, "/rosapi/get_param", "b", args={"name": "/robot/max_speed", "default": "1.5"})
+        assert defaulted["values"]["value"] == "1.5"
+        plain = await call(ws, "/rosapi/get_param", "c", args={"name": "/robot/mode", "default_value": "fast"})
+        assert plain["values"]["value"] == '"fast"'  # plain text is taken as a string, as rosapi does
+        stored = await call(ws, "/rosapi/set_param", "d", args={"name": "robot/max_speed", "value": "2.0"})
+        assert stored["values"] == {"successful": True, "reason": ""}
+        got = await call(ws, "/rosapi/get_param", "e", args={"name": "/robot"})
+        assert json.loads(got["values"]["value"]) == {"max_speed": 2.0}
+        has = await call(ws, "/rosapi/has_param", "f", args={"name": "/robot/max_speed"})
+        assert has["values"] == {"exists": True}
+        found = await call(ws, "/rosapi/search_param", "g", args={"name": "robot/max_speed"})
+        assert found["values"] == {"global_name": "/robot/max_speed"}
+        names = (await call(ws, "/rosapi/get_param_names", "h"))["values"]["names"]
+        assert "/robot/max_speed" in names
+        deleted = await call(ws, "/rosapi/delete_param", "i", args={"name": "/robot/max_speed"})
+        assert deleted["values"] == {"successful": True, "reason": ""}
+        gone = await call(ws, "/rosapi/has_param", "j", args={"name": "/robot/max_speed"})
+        assert gone["values"] == {"exists": False}
+        again = await call(ws, "/rosapi/delete_param", "k", args={"name": "/robot/max_speed"})
+        assert again["values"]["successful"] is False and "not set" in again["values"]["reason"]
+        node_owned = await call(ws, "/rosapi/delete_param", "l", args={"name": "/tuned:mode"})
+        assert "parameter of its node" in node_owned["values"]["reason"]
 
 
 async def test_foxglove_gets_sets_and_follows_parameters(bridge: Bridge, tuned: Tuned) -> None:

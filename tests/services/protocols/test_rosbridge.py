@@ -76,14 +76,20 @@ async def test_a_late_subscriber_gets_the_latched_message(bridge: Bridge) -> Non
     async with connect(bridge.rosbridge_url) as ws:
         await send(ws, op="subscribe", topic="/drone/name")
         assert (await receive(ws, "publish"))["msg"] == {"data": "iris"}
-    # Latched by a rosbridge client: published once, then read by a client that comes later.
+    # Latched by a rosbridge client that advertised with `latch` (roslibjs's and roslibpy's
+    # Topic(latch=True)): published once, then read by a client that comes later.
     async with connect(bridge.rosbridge_url) as publisher:
-        await send(publisher, op="advertise", topic="/demo/mode", type="std_msgs/msg/String")
+        await send(publisher, op="advertise", topic="/demo/mode", type="std_msgs/msg/String", latch=True)
         await send(publisher, op="publish", topic="/demo/mode", msg={"data": "auto"})
-        await wait_until(lambda: bridge.core.registry.topic_type("/demo/mode") is not None, what="the topic")
+        await send(publisher, op="advertise", topic="/demo/said", type="std_msgs/msg/String")  # not latched
+        await send(publisher, op="publish", topic="/demo/said", msg={"data": "once"})
+        await wait_until(lambda: bridge.core.registry.topic_type("/demo/said") is not None, what="the topics")
         async with connect(bridge.rosbridge_url) as late:
+            await send(late, op="subscribe", topic="/demo/said")
             await send(late, op="subscribe", topic="/demo/mode")
-            assert (await receive(late, "publish"))["msg"] == {"data": "auto"}
+            assert await receive(late, "publish") == {"op": "publish", "topic": "/demo/mode", "msg": {"data": "auto"}}
+            await send(publisher, op="publish", topic="/demo/said", msg={"data": "twice"})
+            assert (await receive(late, "publish"))["msg"] == {"data": "twice"}  # "once" never came
 
 
 async def test_fragments_both_ways(bridge: Bridge) -> None:
@@ -164,7 +170,8 @@ async def test_a_call_with_no_timeout_ends_at_the_default_with_an_error_response
         ('{"op": "publish", "topic": "/nobody/knows", "msg": {}}', "has no type yet"),
         ('{"op": "advertise", "topic": "/drone/pose", "type": "std_msgs/msg/String"}', "is geometry_msgs/msg/PoseStamped"),
         ('{"op": "advertise", "topic": "/x", "type": "nope_msgs/msg/Nothing"}', "nope_msgs/msg/Nothing"),
-        ('{"op": "subscribe", "topic": "/drone/pose", "compression": "cbor"}', "compression 'cbor'"),
+        ('{"op": "subscribe", "topic": "/drone/pose", "compression": "zip"}', "subscribe: compression: Input should be 'none', 'png', 'cbor' or 'cbor-raw'"),
+        ('{"op": "subscribe", "topic": "/not/yet"}', "/not/yet does not exist yet and no type was given"),
         ('{"op": "subscribe", "topic": "/api/graph"}', "reserved"),
         ('{"op": "set_level", "level": "loud"}', "level must be one of"),
         ('{"op": "service_response", "service": "/x", "id": "9", "values": {}}', "no call '9'"),

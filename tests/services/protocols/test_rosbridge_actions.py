@@ -176,3 +176,23 @@ async def test_ros1_time_fields_are_taken_as_ros2s(bridge: Bridge) -> None:
         await send(writer, op="publish", topic="/stamped_header", msg={"stamp": {"secs": 3, "nsecs": 5}, "frame_id": "odom"}, id="p")
         got = await receive(reader, "publish")
     assert got["msg"]["stamp"] == {"sec": 3, "nanosec": 5} and got["msg"]["frame_id"] == "odom"
+
+
+async def test_ros1s_actionlib_types_go_out_with_ros1s_time_names_too(bridge: Bridge) -> None:
+    """roslibpy's SimpleActionServer reads a cancel's ``stamp["secs"]``: a type of ROS 1's
+    actionlib is sent with both names; a client echoing both is taken as ROS 2's; other types
+    are sent as they are."""
+    async with connect(bridge.rosbridge_url) as reader, connect(bridge.rosbridge_url) as writer:
+        await send(reader, op="set_level", level="info")
+        for topic, type_name in (("/act/cancel", "actionlib_msgs/GoalID"), ("/act/stamped", "std_msgs/Header")):
+            await send(reader, op="subscribe", topic=topic, type=type_name, id=topic)
+            await receive(reader, "status", id=topic)
+            await send(writer, op="advertise", topic=topic, type=type_name)
+        both = {"sec": 3, "nanosec": 5, "secs": 3, "nsecs": 5}
+        await send(writer, op="publish", topic="/act/cancel", msg={"stamp": {"secs": 3, "nsecs": 5}, "id": "g1"})
+        assert (await receive(reader, "publish", topic="/act/cancel"))["msg"] == {"stamp": both, "id": "g1"}
+        await send(writer, op="publish", topic="/act/cancel", msg={"stamp": both, "id": "g2"}, id="echo")
+        assert (await receive(reader, "publish", topic="/act/cancel"))["msg"] == {"stamp": both, "id": "g2"}
+        await send(writer, op="publish", topic="/act/stamped", msg={"stamp": {"secs": 3, "nsecs": 5}, "frame_id": "odom"})
+        stamped = (await receive(reader, "publish", topic="/act/stamped"))["msg"]
+    assert stamped["stamp"] == {"sec": 3, "nanosec": 5}

@@ -113,3 +113,22 @@ async def test_roslibpy_calling_a_service_that_never_answers_gets_an_error_at_th
         assert line["kind"] == "ServiceException" and "did not answer within 1 s" in line["stuck"]
         assert (await client.expect("after"))["after"] == "geometry_msgs/msg/PoseStamped"
         _no_traceback(await client.finish())
+
+
+async def test_roslibpys_param_reads_ros1_parameters_as_rosapi_on_ros1_answers(bridge: Bridge) -> None:
+    """An unset parameter is None (rosapi's JSON null: roslibpy parses it), a namespace a dict."""
+    client = await bridge.client("roslibpy_client.py", bridge.rosbridge_url, "params")
+    assert (await client.line())["connected"] is True
+    assert (await client.expect("unset"))["unset"] is None
+    assert (await client.expect("set"))["set"] == 1.5
+    assert (await client.expect("namespace"))["namespace"] == {"max_speed": 1.5, "name": "neato"}
+    assert (await client.expect("names"))["names"] == ["/robot/max_speed", "/robot/name"]
+    assert (await client.expect("deleted"))["deleted"] is None
+    assert "Traceback" not in await client.finish()
+
+
+async def test_one_roslibpy_connection_hears_what_it_publishes(bridge: Bridge) -> None:
+    client = await bridge.client("roslibpy_client.py", bridge.rosbridge_url, "echo")
+    assert (await client.line())["connected"] is True
+    assert (await client.expect("heard"))["heard"] == ["hello 0", "hello 1", "hello 2"]
+    assert "Traceback" not in await client.finish()

@@ -28,7 +28,6 @@ class BallNode(WorldNode[BallSettings]):
 
     def _publish_tick(self, steps: int) -> None:
         header = self.header()
-        self.clock_publisher.publish(header.stamp)
         poses = [self.world.ball_pose(i) for i in range(len(self.world.balls))]
         self.balls.publish(
             PoseArray(

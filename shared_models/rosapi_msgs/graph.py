@@ -1,44 +1,10 @@
-"""rosapi_msgs: the services rosbridge clients call to look around (``/rosapi/topics``...).
-
-roslibjs and roslibpy call these on connect (``getTopics``, ``getNodes``, ``Param.get``...); the
-core answers them as the ``/rosapi`` node does beside rosbridge_server. The definitions are ROS
-2's (``rosapi_msgs/srv/Topics``), with the fields both clients read. ``get_param`` and
-``set_param`` carry the value as JSON text, as rosapi does.
-"""
+"""rosapi_msgs' view of the graph: topics, services, nodes, and message types (``TypeDef``)."""
 
 from __future__ import annotations
 
-from typing import Any
+from pydantic import Field
 
-from pydantic import Field, field_validator, model_serializer
-from pydantic_core.core_schema import SerializerFunctionWrapHandler
-
-from shared_models._message import Bool, Int32, Message, ServiceType, String
-from shared_models.builtin_interfaces import Time
-
-__all__ = [
-    "GetParam",
-    "GetParamNames",
-    "GetROSVersion",
-    "GetTime",
-    "MessageDetails",
-    "NodeDetails",
-    "Nodes",
-    "Publishers",
-    "ServiceNode",
-    "ServiceProviders",
-    "ServiceRequestDetails",
-    "ServiceResponseDetails",
-    "ServiceType_",
-    "Services",
-    "ServicesForType",
-    "SetParam",
-    "Subscribers",
-    "TopicType",
-    "Topics",
-    "TopicsForType",
-    "TypeDef",
-]
+from shared_models._message import Int32, Message, ServiceType, String
 
 
 class TypeDef(Message):
@@ -364,125 +330,41 @@ class ServiceResponseDetails(ServiceType):
     Response = ServiceResponseDetailsResponse
 
 
-# -- parameters -----------------------------------------------------------------------------------
+class ServiceHostRequest(Message):
+    __ros_type__ = "rosapi_msgs/srv/ServiceHost_Request"
+
+    service: String = ""
 
 
-class GetParamRequest(Message):
-    __ros_type__ = "rosapi_msgs/srv/GetParam_Request"
+class ServiceHostResponse(Message):
+    __ros_type__ = "rosapi_msgs/srv/ServiceHost_Response"
 
-    name: String = ""  # "/node:param" or "/node.param"
-    default_value: String = ""  # JSON text, answered when the parameter is not set
-
-
-class GetParamResponse(Message):
-    __ros_type__ = "rosapi_msgs/srv/GetParam_Response"
-
-    value: String = ""  # JSON text
-    successful: Bool = False
-    reason: String = ""
+    host: String = ""
 
 
-class SetParamRequest(Message):
-    __ros_type__ = "rosapi_msgs/srv/SetParam_Request"
+class ServiceHost(ServiceType):
+    """The host of the node serving one service (ROS 1's rosapi)."""
 
-    name: String = ""
-    value: String = ""  # JSON text
-
-
-class SetParamResponse(Message):
-    __ros_type__ = "rosapi_msgs/srv/SetParam_Response"
-
-    successful: Bool = False
-    reason: String = ""
+    __ros_type__ = "rosapi_msgs/srv/ServiceHost"
+    Request = ServiceHostRequest
+    Response = ServiceHostResponse
 
 
-class GetParamNamesRequest(Message):
-    __ros_type__ = "rosapi_msgs/srv/GetParamNames_Request"
+class TopicsAndRawTypesRequest(Message):
+    __ros_type__ = "rosapi_msgs/srv/TopicsAndRawTypes_Request"
 
 
-class GetParamNamesResponse(Message):
-    __ros_type__ = "rosapi_msgs/srv/GetParamNames_Response"
+class TopicsAndRawTypesResponse(Message):
+    __ros_type__ = "rosapi_msgs/srv/TopicsAndRawTypes_Response"
 
-    names: list[String] = Field(default_factory=list)
-
-
-class GetParam(ServiceType):
-    """One node parameter's value, as JSON text."""
-
-    __ros_type__ = "rosapi_msgs/srv/GetParam"
-    Request = GetParamRequest
-    Response = GetParamResponse
+    topics: list[String] = Field(default_factory=list)
+    types: list[String] = Field(default_factory=list)
+    typedefs_full_text: list[String] = Field(default_factory=list)  # each type's definition and those it uses
 
 
-class SetParam(ServiceType):
-    """Set one node parameter from JSON text."""
+class TopicsAndRawTypes(ServiceType):
+    """Every topic, its type and its full definition text (what ``cbor-raw`` readers parse with)."""
 
-    __ros_type__ = "rosapi_msgs/srv/SetParam"
-    Request = SetParamRequest
-    Response = SetParamResponse
-
-
-class GetParamNames(ServiceType):
-    """Every node parameter's name."""
-
-    __ros_type__ = "rosapi_msgs/srv/GetParamNames"
-    Request = GetParamNamesRequest
-    Response = GetParamNamesResponse
-
-
-# -- time and version -----------------------------------------------------------------------------
-
-
-class GetTimeRequest(Message):
-    __ros_type__ = "rosapi_msgs/srv/GetTime_Request"
-
-
-class GetTimeResponse(Message):
-    """The time, with ROS 1's ``secs``/``nsecs`` beside ROS 2's ``sec``/``nanosec`` in JSON:
-    roslibpy and older roslibjs read the first, ROS 2 clients the second."""
-
-    __ros_type__ = "rosapi_msgs/srv/GetTime_Response"
-
-    time: Time = Field(default_factory=Time)
-
-    @field_validator("time", mode="before")
-    @classmethod
-    def _ros2_fields_only(cls, value: Any) -> Any:
-        if isinstance(value, dict) and ("secs" in value or "nsecs" in value):
-            return {key: item for key, item in value.items() if key not in ("secs", "nsecs")}
-        return value
-
-    @model_serializer(mode="wrap")
-    def _with_ros1_fields(self, handler: SerializerFunctionWrapHandler) -> dict[str, Any]:
-        data: dict[str, Any] = handler(self)
-        time = data.get("time")
-        if isinstance(time, dict):
-            time["secs"], time["nsecs"] = time["sec"], time["nanosec"]
-        return data
-
-
-class GetROSVersionRequest(Message):
-    __ros_type__ = "rosapi_msgs/srv/GetROSVersion_Request"
-
-
-class GetROSVersionResponse(Message):
-    __ros_type__ = "rosapi_msgs/srv/GetROSVersion_Response"
-
-    version: Int32 = 2
-    distro: String = ""
-
-
-class GetTime(ServiceType):
-    """The time: sim time while /clock runs, else the wall clock."""
-
-    __ros_type__ = "rosapi_msgs/srv/GetTime"
-    Request = GetTimeRequest
-    Response = GetTimeResponse
-
-
-class GetROSVersion(ServiceType):
-    """The ROS version and distribution clients should expect."""
-
-    __ros_type__ = "rosapi_msgs/srv/GetROSVersion"
-    Request = GetROSVersionRequest
-    Response = GetROSVersionResponse
+    __ros_type__ = "rosapi_msgs/srv/TopicsAndRawTypes"
+    Request = TopicsAndRawTypesRequest
+    Response = TopicsAndRawTypesResponse
