@@ -188,6 +188,11 @@ async def _flood_rosbridge(room: Classroom) -> tuple[int, str]:
     frame = json.dumps({"op": "publish", "topic": "/alice/cmd_vel", "msg": {"linear": {"x": 9.0}}})
     async with connect(f"{room.rosbridge_url}/?token={room.token('alice')}") as ws:
         await ws.send(json.dumps({"op": "advertise", "topic": "/alice/cmd_vel", "type": "geometry_msgs/msg/Twist"}))
+        # rosbridge's advertise is not latched (as rosbridge_suite's): what is published before the
+        # world links is not delivered, as in ROS. So the flood starts once the world hears her.
+        while not room.world.commands["alice"]:
+            await ws.send(frame)
+            await asyncio.sleep(0.05)
         with pytest.raises(ConnectionClosed) as closed:
             while True:
                 await ws.send(frame)
