@@ -206,6 +206,9 @@ async def _flood_foxglove(room: Classroom) -> tuple[int, str]:
     frame = struct.pack("<BI", 1, 7) + b'{"linear": {"x": 9.0}}'
     async with connect(url, subprotocols=["foxglove.websocket.v1"]) as ws:  # type: ignore[list-item]
         await ws.send(json.dumps({"op": "advertise", "channels": [channel]}))
+        while not room.world.commands["alice"]:  # the flood starts once the world hears her (linked)
+            await ws.send(frame)
+            await asyncio.sleep(0.05)
         with pytest.raises(ConnectionClosed) as closed:
             while True:
                 await ws.send(frame)
