@@ -19,7 +19,7 @@ from collections.abc import AsyncIterator
 from pathlib import Path
 
 import pytest
-from websockets.asyncio.client import connect
+from websockets.asyncio.client import ClientConnection, connect
 from websockets.exceptions import ConnectionClosed
 
 from services.access import make_class_tokens, write_tokens
@@ -184,15 +184,21 @@ async def _flood_native(room: Classroom) -> tuple[int, str]:
     return closed.value.rcvd.code, closed.value.rcvd.reason
 
 
+async def _until_the_world_hears_alice(room: Classroom, ws: ClientConnection, frame: str | bytes) -> None:
+    """Send ``frame`` now and then until the world has one: a flood starts once the world is
+    linked. Before, what is published is not delivered (as in ROS: rosbridge's advertise is not
+    latched), and a shed connection's publication ends with it, so under load the world could
+    link only after the flood."""
+    while not room.world.commands["alice"]:
+        await ws.send(frame)
+        await asyncio.sleep(0.05)
+
+
 async def _flood_rosbridge(room: Classroom) -> tuple[int, str]:
     frame = json.dumps({"op": "publish", "topic": "/alice/cmd_vel", "msg": {"linear": {"x": 9.0}}})
     async with connect(f"{room.rosbridge_url}/?token={room.token('alice')}") as ws:
         await ws.send(json.dumps({"op": "advertise", "topic": "/alice/cmd_vel", "type": "geometry_msgs/msg/Twist"}))
-        # rosbridge's advertise is not latched (as rosbridge_suite's): what is published before the
-        # world links is not delivered, as in ROS. So the flood starts once the world hears her.
-        while not room.world.commands["alice"]:
-            await ws.send(frame)
-            await asyncio.sleep(0.05)
+        await _until_the_world_hears_alice(room, ws, frame)
         with pytest.raises(ConnectionClosed) as closed:
             while True:
                 await ws.send(frame)
@@ -206,9 +212,7 @@ async def _flood_foxglove(room: Classroom) -> tuple[int, str]:
     frame = struct.pack("<BI", 1, 7) + b'{"linear": {"x": 9.0}}'
     async with connect(url, subprotocols=["foxglove.websocket.v1"]) as ws:  # type: ignore[list-item]
         await ws.send(json.dumps({"op": "advertise", "channels": [channel]}))
-        while not room.world.commands["alice"]:  # the flood starts once the world hears her (linked)
-            await ws.send(frame)
-            await asyncio.sleep(0.05)
+        await _until_the_world_hears_alice(room, ws, frame)
         with pytest.raises(ConnectionClosed) as closed:
             while True:
                 await ws.send(frame)
