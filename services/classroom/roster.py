@@ -25,9 +25,10 @@ import yaml
 
 from services.access import ClassTokensError, check_student_name
 from shared_models.errors import SkydeckError
+from shared_models.text_files import read_text_file
 from sim_server.robot.limits import MAX_CLASS_ROBOTS  # pure constants: no PyBullet
 
-__all__ = ["CLASS_WORLDS", "ClassroomError", "Roster", "read_roster"]
+__all__ = ["CLASS_WORLDS", "ClassroomError", "Roster", "check_names", "read_roster"]
 
 CLASS_WORLDS = ("robot",)
 """The worlds a class runs in: the robot world holds a robot per student (the drone world one drone)."""
@@ -48,14 +49,10 @@ class Roster:
     world: str = "robot"
 
 
-def read_roster(path: Path) -> Roster:
-    """The roster at ``path`` (CSV, or YAML by its suffix); ClassroomError in one line."""
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ClassroomError(f"no roster {path}: a CSV of names, one a line (docs/class.md)") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise ClassroomError(f"cannot read {path}: {getattr(error, 'strerror', None) or error}") from None
+def read_roster(path: Path, *, max_students: int | None = MAX_CLASS_ROBOTS) -> Roster:
+    """The roster at ``path`` (CSV, or YAML by its suffix); ClassroomError in one line. A class
+    room holds ``max_students`` robots; grading a class reads its roster with no such bound."""
+    text = read_text_file(path, "roster file", lambda reason: ClassroomError(f"{path}: {reason} (a CSV of names, one a line: docs/class.md)"))
     if path.suffix.lower() in _YAML_SUFFIXES:
         names, world = _from_yaml(path, text)
     else:
@@ -65,10 +62,12 @@ def read_roster(path: Path) -> Roster:
             f"{path}: world {world!r}: a class runs in the robot world (a robot per student); "
             f"the drone world holds one drone. Write `world: robot` or leave it out"
         )
-    students = _checked(path, names)
-    if len(students) > MAX_CLASS_ROBOTS:
+    if not names:
+        raise ClassroomError(f"{path} names no student: one name a line")
+    students = check_names([(f"{path}:{number}" if number else str(path), name) for number, name in names])
+    if max_students is not None and len(students) > max_students:
         raise ClassroomError(
-            f"{path} names {len(students)} students; a room holds {MAX_CLASS_ROBOTS} robots: split the class in two"
+            f"{path} names {len(students)} students; a room holds {max_students} robots: split the class in two"
         )
     return Roster(students, world)
 
@@ -102,19 +101,27 @@ def _from_yaml(path: Path, text: str) -> tuple[list[tuple[int, str]], str]:
     return [(0, name.strip()) for name in data], world
 
 
-def _checked(path: Path, names: list[tuple[int, str]]) -> tuple[str, ...]:
-    seen: dict[str, int] = {}
-    for number, name in names:
-        where = f"{path}:{number}" if number else str(path)
+def check_names(names: list[tuple[str, str]]) -> tuple[str, ...]:
+    """The students' names, each a student's name (:func:`services.access.check_student_name`)
+    and none twice in any case; each comes with where it was found (``FILE:LINE``, a folder),
+    which a ClassroomError names."""
+    seen: dict[str, str] = {}
+    for where, name in names:
         try:
             check_student_name(name)
         except ClassTokensError as error:
             raise ClassroomError(f"{where}: {error}") from None
         first = seen.get(name.lower())
         if first is not None:
-            again = f"line {first}" if first else "earlier"
-            raise ClassroomError(f"{where}: {name} is on the roster already ({again}): each student once")
-        seen[name.lower()] = number
-    if not names:
-        raise ClassroomError(f"{path} names no student: one name a line")
+            raise ClassroomError(f"{where}: {name} is a student already ({_earlier(first, where)}): each student once")
+        seen[name.lower()] = where
     return tuple(name for _, name in names)
+
+
+def _earlier(first: str, where: str) -> str:
+    """Where the first of two alike names is, said from the second's place: a line of the same
+    file, ``earlier`` (the same place: a YAML list), or the other place (a folder)."""
+    first_file, _, first_line = first.rpartition(":")
+    if first_line.isdigit() and first_file == where.rpartition(":")[0]:
+        return f"line {first_line}"
+    return "earlier" if first == where else first

@@ -44,12 +44,12 @@ def test_a_yaml_roster_is_a_list_or_students_and_a_world(tmp_path: Path) -> None
 @pytest.mark.parametrize(
     ("name", "text", "said"),
     [
-        ("twice.csv", "alice\nbob\nalice\n", "twice.csv:3: alice is on the roster already (line 1): each student once"),
-        ("case.csv", "alice\nAlice\n", "case.csv:2: Alice is on the roster already (line 1): each student once"),
+        ("twice.csv", "alice\nbob\nalice\n", "twice.csv:3: alice is a student already (line 1): each student once"),
+        ("case.csv", "alice\nAlice\n", "case.csv:2: Alice is a student already (line 1): each student once"),
         ("bad.csv", "alice\nbob smith\n", "bad.csv:2: 'bob smith' cannot be a student's name: a letter, then letters, digits or _ (at most 63), since it names their namespace /NAME"),
         ("teacher.csv", "instructor\n", "teacher.csv:1: 'instructor' is the instructor's line: give the student another name"),
         ("empty.csv", "name\n\n# nobody yet\n", "empty.csv names no student: one name a line"),
-        ("twice.yaml", "students: [alice, alice]\n", "twice.yaml: alice is on the roster already (earlier): each student once"),
+        ("twice.yaml", "students: [alice, alice]\n", "twice.yaml: alice is a student already (earlier): each student once"),
         ("drone.yaml", "world: drone\nstudents: [alice]\n", "drone.yaml: world 'drone': a class runs in the robot world (a robot per student); the drone world holds one drone. Write `world: robot` or leave it out"),
         ("typo.yaml", "studnets: [alice]\n", "typo.yaml: unknown key 'studnets': a roster has `students:` and `world:`"),
         ("numbers.yaml", "students: [1, 2]\n", "numbers.yaml: `students:` must be a list of names (e.g. [alice, bob])"),
@@ -74,7 +74,7 @@ def test_skydeck_class_says_a_bad_roster_in_one_line_and_writes_no_tokens(tmp_pa
         cwd=REPO, capture_output=True, text=True, timeout=50,
     )  # fmt: skip
     assert done.returncode == 1
-    assert done.stderr.strip().splitlines() == [f"skydeck: error: {roster}:3: alice is on the roster already (line 1): each student once"]
+    assert done.stderr.strip().splitlines() == [f"skydeck: error: {roster}:3: alice is a student already (line 1): each student once"]
     assert not (tmp_path / "t.csv").exists()
 
 
