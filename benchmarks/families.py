@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 from benchmarks.camera import camera_family
+from benchmarks.class_families import class_room, fences
 from benchmarks.runner import Family
 from benchmarks.suite import Suite
 from benchmarks.system_families import bag, http_clients, registry, services, startup, viewers
@@ -40,6 +41,8 @@ def families(suite: Suite, only: set[str] | None = None) -> list[Family]:
         bag(suite),
         grading(suite),
         *ros2(suite),
+        fences(suite),
+        class_room(suite),
     ]
     if suite.plots:
         every += [throughput_by_size(suite), rtf_by_boxes(suite)]

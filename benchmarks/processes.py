@@ -97,16 +97,20 @@ def wait_http(url: str, timeout_s: float, *, what: str, worker: Worker) -> None:
         raise BenchError(f"{what}: {error}") from None
 
 
-def start_core(name: str = "core", *, rosbridge_port: int = 0) -> tuple[Worker, str]:
+def start_core(
+    name: str = "core", *, rosbridge_port: int = 0, flags: tuple[str, ...] = (), env: dict[str, str] | None = None
+) -> tuple[Worker, str]:
     """A ``skydeck core`` on a free port, serving; returns the worker and its URL.
 
-    Its protocol endpoints are off, but for rosbridge on ``rosbridge_port`` when one is given.
+    Its protocol endpoints are off, but for rosbridge on ``rosbridge_port`` when one is given;
+    ``flags`` are more of its flags (``--class-tokens FILE``), ``env`` its environment.
     """
     port = free_port()
     endpoints = ["--rosbridge-port", str(rosbridge_port), "--foxglove-port", "0"]
     worker = Worker(
-        name, "services.cli", "core", "--port", str(port), "--log-level", "warning", *endpoints, env=worker_env()
-    )
+        name, "services.cli", "core", "--port", str(port), "--log-level", "warning", *endpoints, *flags,
+        env=env or worker_env(),
+    )  # fmt: skip
     url = f"http://127.0.0.1:{port}"
     try:
         wait_http(f"{url}/health", 20.0, what="skydeck core", worker=worker)

@@ -17,7 +17,7 @@ from typing import Any
 
 from benchmarks.payload import latency_us
 
-__all__ = ["Sink", "emit", "percentile", "topic_arguments", "wait_for_stop", "wait_for_stop_async"]
+__all__ = ["Sink", "counting_window", "emit", "percentile", "topic_arguments", "wait_for_stop", "wait_for_stop_async"]
 
 _MAX_SAMPLES_KEPT = 20_000  # latency samples sent back for the plots
 
@@ -38,6 +38,21 @@ def wait_for_stop() -> None:
 async def wait_for_stop_async() -> None:
     """:func:`wait_for_stop` without blocking the event loop."""
     await asyncio.to_thread(wait_for_stop)
+
+
+async def counting_window(tasks: list[asyncio.Task[Any]], counting: asyncio.Event, warmup_s: float) -> float:
+    """A crowd of readers' measured window: after ``warmup_s`` they count (``counting`` is set)
+    and ``READY`` is said; at ``stop`` they are cancelled. Returns the window's wall seconds."""
+    await asyncio.sleep(warmup_s)
+    counting.set()
+    emit("READY", {})
+    started = time.monotonic()
+    await wait_for_stop_async()
+    wall = time.monotonic() - started
+    for task in tasks:
+        task.cancel()
+    await asyncio.gather(*tasks, return_exceptions=True)
+    return wall
 
 
 def percentile(sorted_values: list[float], fraction: float) -> float:

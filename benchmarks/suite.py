@@ -42,6 +42,9 @@ class Settings:
     bag_window_s: float = 2.0
     http_client_repetitions: int = 3
     grading_repetitions: int = 3
+    fence_messages: int = 20_000
+    class_students: int = 30
+    class_repetitions: int = 1
 
 
 QUICK = Settings(

@@ -23,7 +23,7 @@ import ormsgpack
 from websockets.asyncio.client import ClientConnection, connect
 
 from benchmarks.payload import latency_us, stamp_now
-from benchmarks.sink import emit, percentile, wait_for_stop_async
+from benchmarks.sink import counting_window, emit, percentile, wait_for_stop_async
 from services.runtime import Node, NodeSettings
 from services.runtime.edge.links import stream_url
 from services.runtime.executor import run
@@ -124,16 +124,7 @@ async def viewers(args: argparse.Namespace) -> None:
     crowd += [_Viewer(stream_url(args.core, args.image_topic), True, False) for _ in range(args.image)]
     crowd += [_Viewer(stream_url(args.core, args.image_topic, queue=2), True, True) for _ in range(args.stalled)]
     counting = asyncio.Event()
-    tasks = [asyncio.create_task(viewer.run(counting)) for viewer in crowd]
-    await asyncio.sleep(args.warmup)
-    counting.set()
-    emit("READY", {})
-    started = time.monotonic()
-    await wait_for_stop_async()
-    wall = time.monotonic() - started
-    for task in tasks:
-        task.cancel()
-    await asyncio.gather(*tasks, return_exceptions=True)
+    wall = await counting_window([asyncio.create_task(viewer.run(counting)) for viewer in crowd], counting, args.warmup)
 
     def summary(group: list[_Viewer]) -> dict[str, Any]:
         latencies = sorted(value for viewer in group for value in viewer.latencies_us)

@@ -23,3 +23,4 @@ class Close(enum.IntEnum):
     INTERNAL = 1011  # the server failed
     REPLACED = 4000  # a node session: a newer node took this name
     STALLED = 4001  # a reader took nothing for SKYDECK_STALL_TIMEOUT_S while frames waited
+    RATE_LIMITED = 4002  # a student's token sent more than its rate through the core (SKYDECK_STUDENT_*)

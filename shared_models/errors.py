@@ -21,6 +21,11 @@ launcher and the CLI all descend from one class. The whole tree::
     ├── ServiceHandlerError                500   -     a handler raised or returned the wrong type
     ├── GoalTransitionError                 -    -     an action goal moved as ROS 2's state machine forbids
     ├── RegistrationRejected                -    -     the core refused a node's session
+    ├── ClassTokensError                   400   -     a roster name, tokens file or class rules file that cannot be used
+    ├── AccessRefused                      403  1008   a class's fences: the subject may not (services/access/policy.py)
+    │   ├── Forbidden                      403  1008   the subject's token may not do this
+    │   └── TokenNeeded                    401  1008   no token (or one nobody has) where one is needed
+    ├── RateLimited                        429  4002   a student's token sends too much, or has too many calls waiting
     ├── EndpointPortBusy                    -    -     a protocol endpoint's port is taken at start-up
     ├── Refused (rosbridge), _Refused (Foxglove)  a protocol op that cannot be done: a status reply
     ├── ParameterError                     400   -     a parameter a protocol client named or set is wrong

@@ -1,7 +1,8 @@
 """Imports run downward only: the lower layers never load the ones built on them.
 
-shared_models (messages, names, errors) <- services.runtime (the SDK) <- services.core and the
-nodes <- services.protocols (adapters over the core) <- services.launch <- services.cli. A module
+shared_models (messages, names, errors) <- services.runtime (the SDK) <- services.access (tokens,
+the fences) <- services.core and the nodes <- services.protocols (adapters over the core) <-
+services.launch <- services.classroom (`skydeck class`) <- services.cli. A module
 that imported upward would tie a layer to the one above it (the launcher to the CLI, the app to
 the node it is part of, the core to a protocol). The table of endpoints is read by the launcher
 and the CLI without loading a protocol or the core.
@@ -23,6 +24,7 @@ LAYERS = {
     "shared_models.catalogue": ("services", "sim_server"),
     "services.runtime": ("services.core", "services.launch", "services.cli", "services.ros"),
     "services.runtime.app": ("services.runtime.node",),
+    "services.access": ("services.core", "services.protocols", "services.launch", "services.cli"),
     "services.core.app": ("services.protocols", "services.launch", "services.cli"),
     "services.core.server": ("services.protocols", "services.launch", "services.cli"),
     "services.protocols": ("services.core", "services.protocols.rosbridge", "services.protocols.foxglove"),
@@ -30,6 +32,8 @@ LAYERS = {
     "services.protocols.rosbridge": ("services.protocols.foxglove", "services.launch", "services.cli"),
     "services.protocols.foxglove": ("services.protocols.rosbridge", "services.launch", "services.cli"),
     "services.launch.supervisor": ("services.cli",),
+    "services.classroom": ("services.cli",),
+    "services.core.classroom": ("services.protocols", "services.launch", "services.cli", "services.classroom"),
     "services.launch.plan": ("services.cli", "services.core", "services.protocols.rosbridge", "services.protocols.foxglove"),
     "sim_server.node": ("services.cli", "services.launch", "services.core", "sim_server.drone", "sim_server.robot"),
     "sim_server.drone.node": ("services.cli", "services.launch", "services.core", "sim_server.robot"),

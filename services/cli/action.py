@@ -30,6 +30,7 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
 
     p = add_verb(verbs, "list", _list, "list the actions of the running system")
     p.add_argument("-t", "--show-types", action="store_true", help="show each action's type")
+    p.add_argument("-a", "--all", action="store_true", help="also Skydeck's own (tf2_web_republisher's, for rosbridge clients)")
 
     p = add_verb(verbs, "info", _info, "the servers and clients of an action")
     p.add_argument("action", help="e.g. /fibonacci")
@@ -46,7 +47,11 @@ def _actions() -> dict[str, ActionInGraph]:
 
 
 def _list(args: argparse.Namespace) -> int:
+    from services.runtime.service_groups import SYSTEM_NODES
+
     for name, action in _actions().items():
+        if not args.all and action.servers and set(action.servers) <= SYSTEM_NODES:
+            continue  # as `service list` leaves Skydeck's own services to --all
         print(name + (f" [{action.type}]" if args.show_types else ""))
     return 0
 

@@ -54,9 +54,10 @@ def build_parser() -> argparse.ArgumentParser:
 def _add_optional(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     # Verbs whose modules pull in heavier dependencies (launch), or run what an installation may
     # not have (bench: the checkout's benchmarks), register themselves here.
-    from services.cli import bench, launch
+    from services.cli import bench, classroom, launch
 
     launch.add_parser(subparsers)
+    classroom.add_parser(subparsers)
     bench.add_parser(subparsers)
 
 

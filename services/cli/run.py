@@ -23,6 +23,18 @@ def add_parsers(subparsers: argparse._SubParsersAction[argparse.ArgumentParser])
     core = subparsers.add_parser("core", help="run the core: registry, gateway, dashboard (like roscore)")
     _add_server_flags(core, default_port=8000)
     add_endpoint_flags(core)
+    core.add_argument(
+        "--class-tokens",
+        type=Path,
+        metavar="FILE",
+        help="run a class: its tokens file (`name,token` lines, `skydeck class` writes it); docs/security.md",
+    )
+    core.add_argument(
+        "--class-rules", type=Path, metavar="FILE", help="the class's rules: what students share (YAML); docs/security.md"
+    )
+    core.add_argument(
+        "--class-gradebook", type=Path, metavar="FILE", help="the grades the class page shows (`skydeck grade --class`'s JSON)"
+    )
     core.set_defaults(func=_core)
 
     run = subparsers.add_parser(
@@ -90,11 +102,15 @@ def _core(args: argparse.Namespace) -> int:
     from services.protocols.settings import CoreProcessSettings
 
     ports = {endpoint.setting: getattr(args, endpoint.setting) for endpoint in ENDPOINTS}
-    serve(CoreProcessSettings.from_flags(**_server_flags(args), **ports))  # flags over SKYDECK_*
+    classroom = {
+        "class_tokens": args.class_tokens, "class_rules": args.class_rules, "class_gradebook": args.class_gradebook,
+    }  # fmt: skip
+    serve(CoreProcessSettings.from_flags(**_server_flags(args), **ports, **classroom))  # flags over SKYDECK_*
     return 0
 
 
 def _run(args: argparse.Namespace) -> int:
+    from services.cli.student import ask_namespace, fence_namespace, given_namespaces
     from services.runtime.ros_args import (
         parse_ros1_args,
         parse_ros_args,
@@ -104,15 +120,17 @@ def _run(args: argparse.Namespace) -> int:
     from services.runtime.settings import NodeSettings, use_node_settings
 
     # This process's settings, flags over SKYDECK_*, built once for every node it makes.
-    use_node_settings(
-        NodeSettings.from_flags(
-            **_server_flags(args), core_url=args.core_url, use_sim_time=True if args.use_sim_time else None
-        )
+    settings = NodeSettings.from_flags(
+        **_server_flags(args), core_url=args.core_url, use_sim_time=True if args.use_sim_time else None
     )
+    use_node_settings(settings)
     node_argv, ros_argv = split_ros_args(list(args.extra))
     arguments = parse_ros_args(ros_argv)
     if args.node not in BUILTIN_NODES:  # a ROS 1 program's `chatter:=/news _rate:=5` too
         arguments = parse_ros1_args(node_argv)[1] + arguments
+    namespace = ask_namespace(settings.core_url, settings.token)  # a student's token: their namespace
+    if namespace is not None:
+        arguments = fence_namespace(namespace, arguments, given_namespaces(arguments, node_argv, settings.ros_namespace))
     set_process_ros_arguments(arguments)  # every node of this process reads them
     if args.node in BUILTIN_NODES:
         module = importlib.import_module(BUILTIN_NODES[args.node])

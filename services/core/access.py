@@ -2,7 +2,8 @@
 
 Topics go through the core node (:class:`~services.core.gateway_topic.GatewayTopic`), service
 calls through the one call path (:class:`~services.core.service_calls.ServiceCalls`), each
-connection is a guest in the graph (:class:`~services.core.guests.Guests`), and ROS 1's
+connection is a guest in the graph (:class:`~services.core.guests.Guests`), admitted by the
+core's fences (:class:`~services.access.Fences`: what its token may do), and ROS 1's
 parameters are the core's parameter server (rosapi's ``get_param`` of a ROS 1 name). The registry is
 read, never written, by endpoints. The core builds it when it starts and gives it to each
 plugin (:mod:`services.core.endpoint_servers`); it knows nothing of the protocols themselves.
@@ -12,6 +13,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from services.access import Fences
 from services.core.core_node import CoreNode
 from services.core.gateway import Gateway
 from services.core.guests import Guests
@@ -33,4 +35,5 @@ class CoreAccess:
     calls: ServiceCalls
     gateway: Gateway
     settings: CoreSettings
+    fences: Fences
     rosparam: ParameterTree

@@ -22,8 +22,10 @@ from fastapi.staticfiles import StaticFiles
 from starlette.routing import Route, WebSocketRoute
 from starlette.types import Receive, Scope, Send
 
+from services.access import Verb
 from services.core.access import CoreAccess
 from services.core.api import router as api_router
+from services.core.classroom import router as class_router
 from services.core.core_node import CORE_NODE, CORE_NODE_PATH, CoreNode
 from services.core.endpoint_servers import EndpointServers, ServedEndpoint
 from services.core.gateway import Gateway
@@ -39,9 +41,11 @@ from services.core.rosout_log import router as rosout_router
 from services.core.service_calls import ServiceCalls
 from services.core.sessions import serve_session
 from services.core.settings import CoreSettings
-from services.runtime.auth import NOT_AUTHORISED, token_matches
+from services.core.visitors import FencedEndpoint, core_fences, visitor
+from services.core.visitors import router as access_router
+from services.runtime.auth import presented_token
 from services.runtime.edge.frames import FrameRejected
-from services.runtime.edge.topic_socket import serve_topic_socket
+from services.runtime.edge.topic_socket import TopicPort, serve_topic_socket
 from services.runtime.edge_checks import edge_checks
 from services.runtime.http_client import HttpClient
 from services.runtime.http_errors import install_error_handlers
@@ -81,6 +85,7 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
     ``skydeck core`` gives those of the table (:mod:`services.protocols.core_process`).
     """
     settings = settings or CoreSettings()
+    fences = core_fences(settings)  # a class's files are read now: a bad one stops the start, in one line
     registry = Registry()
     core_url = settings.advertise_url or f"http://{reachable_host(settings.host)}:{settings.port}"
     core_node = CoreNode(registry, settings, core_url)
@@ -94,14 +99,14 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
         app.state.rosout = RosoutLog(core_node)
         app.state.rosout.start()
         guests = Guests(registry, core_node.participant.url)
-        calls = ServiceCalls(registry, guests, settings, http)
-        gateway = Gateway(registry, core_node, settings, http, calls)
+        calls = ServiceCalls(registry, guests, settings, http, fences)
+        gateway = Gateway(registry, core_node, settings, http, calls, fences)
         app.state.http = http
         app.state.gateway = gateway
         app.state.calls = calls
         app.service_calls = calls
         app.state.recordings = Recordings(settings.recordings_folder, core_node, registry)
-        await servers.start(CoreAccess(core_node, registry, guests, calls, gateway, settings, rosparam))
+        await servers.start(CoreAccess(core_node, registry, guests, calls, gateway, settings, fences, rosparam))
         try:
             yield
         finally:
@@ -127,11 +132,14 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
     )
     app.state.registry = registry
     app.state.settings = settings
+    app.state.fences = fences
     app.state.core_node = core_node
     app.state.endpoints = servers
     app.state.rosparam = rosparam
     install_error_handlers(app)
     app.include_router(api_router)
+    app.include_router(access_router)
+    app.include_router(class_router)
     app.include_router(recordings_router)
     app.include_router(parameter_server_router)
     app.include_router(rosout_router)
@@ -149,13 +157,15 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
 
     @app.websocket("/api/session")
     async def session(websocket: WebSocket) -> None:
-        await serve_session(websocket, registry, token=settings.token)
+        await serve_session(websocket, registry, fences)
 
-    def core_topic(websocket: WebSocket) -> Any:
-        endpoint = core_node.endpoint(websocket.scope["path"].removeprefix(CORE_NODE_PATH))
+    def core_topic(websocket: WebSocket) -> TopicPort:
+        name = websocket.scope["path"].removeprefix(CORE_NODE_PATH)
+        endpoint = core_node.endpoint(name)
         if endpoint is None or not endpoint.publishing:
             raise FrameRejected(Close.POLICY, f"the core does not publish {websocket.url.path}")
-        return endpoint
+        guest = fences.admit(presented_token(websocket))
+        return endpoint if guest.unlimited else FencedEndpoint(endpoint, guest)
 
     @app.get(CORE_NODE_PATH + "/health", include_in_schema=False)
     async def core_node_health() -> dict[str, Any]:
@@ -164,7 +174,11 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
     @app.get(CORE_NODE_PATH + "/{topic:path}", include_in_schema=False)
     async def core_latest(request: Request) -> Response:
         """The latest message of a topic the core publishes for its clients."""
-        endpoint = core_node.endpoint(request.url.path.removeprefix(CORE_NODE_PATH))
+        name = request.url.path.removeprefix(CORE_NODE_PATH)
+        refusal = visitor(request).refusal(Verb.READ, name)
+        if refusal is not None:
+            return JSONResponse({"detail": str(refusal)}, status_code=refusal.http_status)
+        endpoint = core_node.endpoint(name)
         if endpoint is None or not endpoint.publishing or endpoint.latest_frame is None:
             return JSONResponse({"detail": f"the core does not publish {request.url.path}"}, status_code=404)
         return Response(endpoint.latest_frame, media_type="application/json")
@@ -172,16 +186,14 @@ def create_app(settings: CoreSettings | None = None, *, endpoints: Sequence[Serv
     @app.post(CORE_NODE_PATH + "/{name:path}", include_in_schema=False)
     async def core_service(request: Request) -> Response:
         """A service the core hosts for a guest (rosapi, a rosbridge client's), called directly."""
-        if not token_matches(settings.token, request):
-            return JSONResponse({"detail": NOT_AUTHORISED}, status_code=401)
         name = request.scope["path"].removeprefix(CORE_NODE_PATH)
-        reply = await request.app.state.calls.call_hosted(name, await request.body())
+        reply = await request.app.state.calls.call_hosted(name, await request.body(), caller=visitor(request))
         return Response(reply.body, status_code=reply.status, media_type=reply.content_type)
 
     @app.websocket(CORE_NODE_PATH + "/{topic:path}")
     async def core_publication(websocket: WebSocket) -> None:
         """Nodes subscribed to a topic the core publishes (for its clients) link here."""
-        await serve_topic_socket(websocket, core_topic, token=settings.token, stall_timeout_s=settings.reader_stall_s)
+        await serve_topic_socket(websocket, core_topic, token="", stall_timeout_s=settings.reader_stall_s)
 
     @app.get("/openapi.json", include_in_schema=False)
     async def openapi(request: Request) -> JSONResponse:

@@ -1,10 +1,14 @@
 """The gateway: every topic and service name answered by the core, routed to the node behind it.
 
 - ``POST /NAME``: a service call, forwarded to the hosting node through the one service-call
-  path (:mod:`services.core.service_calls`: 404 unknown, 503 unreachable, 504 timeout, each with
-  a ``detail`` that says what to do).
-- ``GET /NAME``: the latest message of a topic, from a publisher.
-- ``ws://CORE/NAME``: the topic's stream (see :mod:`services.core.gateway_topic`).
+  path (:mod:`services.core.service_calls`: 404 unknown, 401/403 fenced, 503 unreachable, 504
+  timeout, each with a ``detail`` that says what to do).
+- ``GET /NAME``: the latest message of a topic, from a publisher (401/403 if the caller may not
+  read it).
+- ``ws://CORE/NAME``: the topic's stream (see :mod:`services.core.gateway_topic`), fenced for
+  the token the socket presents.
+
+Each request or socket is admitted by the core's fences (:mod:`services.access`) once.
 """
 
 from __future__ import annotations
@@ -13,6 +17,7 @@ from fastapi.responses import JSONResponse, Response
 from starlette.requests import Request
 from starlette.websockets import WebSocket
 
+from services.access import Fences, Verb
 from services.core.core_node import CORE_NODE, CoreNode
 from services.core.gateway_topic import GatewayTopic, declared_type
 from services.core.registry import Registry
@@ -34,13 +39,20 @@ class Gateway:
     """Routes names to nodes for HTTP and WebSocket clients of the core."""
 
     def __init__(
-        self, registry: Registry, core: CoreNode, settings: CoreSettings, http: HttpClient, calls: ServiceCalls
+        self,
+        registry: Registry,
+        core: CoreNode,
+        settings: CoreSettings,
+        http: HttpClient,
+        calls: ServiceCalls,
+        fences: Fences,
     ) -> None:
         self._registry = registry
         self._core = core
         self._settings = settings
         self._http = http
         self._calls = calls
+        self._fences = fences
 
     # -- HTTP ---------------------------------------------------------------------------------
 
@@ -52,14 +64,18 @@ class Gateway:
             return _error(404, str(error))
         if request.method == "POST":
             return await self._call_service(name, request)
+        refusal = self._fences.admit(presented_token(request)).refusal(Verb.READ, name)
+        if refusal is not None:
+            return _error(refusal.http_status, str(refusal))
         return await self._latest(name)
 
     async def _call_service(self, name: str, request: Request) -> Response:
         """An HTTP client's call that the core's own protocol did not take (a browser's, one with
         ``?token=``, any under another server): the same call, its failure as a JSON ``detail``."""
+        caller = self._fences.admit(presented_token(request))
         try:
             reply = await self._calls.call(
-                name, await request.body(), token=presented_token(request), content_type=request.headers.get("content-type")
+                name, await request.body(), caller=caller, content_type=request.headers.get("content-type")
             )
         except ServiceCallFailed as failed:
             reply = failed.reply()
@@ -96,12 +112,13 @@ class Gateway:
     # -- WebSocket ----------------------------------------------------------------------------
 
     async def handle_stream(self, websocket: WebSocket) -> None:
-        """A topic's stream through the core node (see :mod:`services.core.gateway_topic`)."""
-        await serve_topic_socket(
-            websocket, self._find_topic, token=self._settings.token, stall_timeout_s=self._settings.reader_stall_s
-        )
+        """A topic's stream through the core node (see :mod:`services.core.gateway_topic`): the
+        topic fences the socket (reading when it opens, publishing at its first frame), so the
+        edge checks no token of its own."""
+        await serve_topic_socket(websocket, self._find_topic, token="", stall_timeout_s=self._settings.reader_stall_s)
 
     def _find_topic(self, websocket: WebSocket) -> GatewayTopic:
         name = resolve_name(websocket.scope["path"])  # InvalidNameError closes with 1008
         declared = declared_type(websocket.query_params.get("type"))
-        return GatewayTopic(self._core, self._registry, name, declared)
+        return GatewayTopic(self._core, self._registry, name, declared, visitor=self._fences.admit(presented_token(websocket)))
+

@@ -203,7 +203,7 @@ class GatewayHttpProtocol(asyncio.Protocol):
             calls.start(
                 call.name,
                 call.body,
-                token=bearer_token(call.authorization),
+                caller=calls.fences.admit(bearer_token(call.authorization)),
                 content_type=call.content_type,
                 on_done=self._answer,
             )

@@ -9,10 +9,17 @@ The native socket uses the three TopicPort calls; the protocol adapters, whose c
 publish one topic with separate lifetimes on one connection, use the four calls underneath
 (``start_reading``, ``stop_reading``, ``publish``, ``stop_publishing``). Either way a frame is
 validated, published and kept from echoing here and nowhere else.
+
+Each view is fenced for its client (:class:`~services.access.fences.Pass`, ``visitor``):
+reading is decided when it starts, publishing at the first frame (or advertise), so a message
+costs only its subject's rate count (a student's: RateLimited, close 4002, once over). A view
+the core makes for itself (``visitor=None``: Foxglove's clock, parameter events it filters) is
+not fenced.
 """
 
 from __future__ import annotations
 
+from services.access import AccessRefused, Pass, RateLimited, Verb
 from services.core.core_node import CoreNode
 from services.core.registry import Registry
 from services.runtime.edge.encoding import decode
@@ -43,7 +50,14 @@ class GatewayTopic:
     """One client's view of one topic through the core node."""
 
     def __init__(
-        self, core: CoreNode, registry: Registry, name: str, declared: type[Message] | None, *, latched: bool = True
+        self,
+        core: CoreNode,
+        registry: Registry,
+        name: str,
+        declared: type[Message] | None,
+        *,
+        visitor: Pass | None,
+        latched: bool = True,
     ) -> None:
         self.name = name
         self._core = core
@@ -52,6 +66,9 @@ class GatewayTopic:
         self._latched = latched  # whether what this client publishes is latched (see CoreNode)
         self._type: type[Message] | None = None  # fixed by the first valid frame
         self._endpoint: TopicEndpoint | None = None  # the core's, once this client publishes
+        self._visitor = None if visitor is None or visitor.unlimited else visitor  # None: nothing to check
+        self._bucket = None if self._visitor is None else self._visitor.bucket  # a student's rate, per frame
+        self._may_publish = self._visitor is None  # decided at the first publish
 
     @property
     def latched(self) -> bool:
@@ -59,9 +76,15 @@ class GatewayTopic:
 
     # -- reading and publishing (what every client of the core does) ----------------------------
 
+    def check(self, verb: Verb) -> None:
+        """AccessRefused (401/403, 1008) unless this view's client may ``verb`` the topic."""
+        if self._visitor is not None:
+            self._visitor.check(verb, self.name)
+
     def start_reading(self, outbox: Outbox) -> Frame | None:
         """Frames on the topic go to ``outbox`` from now on; returns the latched frame, if any
-        (in the outbox's encoding)."""
+        (in the outbox's encoding). AccessRefused if the client may not read it."""
+        self.check(Verb.READ)
         endpoint = self._core.start_reading(self.name, outbox)
         if endpoint.latest is not None and (endpoint.latched or self._registry.is_latched(self.name)):
             return endpoint.latest.get(outbox.encoding)
@@ -72,7 +95,9 @@ class GatewayTopic:
 
     def advertise(self) -> None:
         """Publish the topic from now on, before the first frame (rosbridge's and Foxglove's
-        advertise), so subscribers link to the core while the client gets ready."""
+        advertise), so subscribers link to the core while the client gets ready. AccessRefused
+        if the client may not publish it."""
+        self._admit_publishing()
         if self._endpoint is None:
             msg_type = self.message_type()
             self._endpoint = self._core.start_publishing(self.name, msg_type, latched=self._latched)
@@ -82,8 +107,13 @@ class GatewayTopic:
         """Validate ``frame`` (JSON text, or msgpack bytes) and publish it through the core node, to everyone but ``sender``.
 
         Raises FrameRejected (1007 for a frame of the wrong type, 1008 for a topic with no
-        type). Returns True for this client's first frame (the core started publishing for it).
+        type), AccessRefused (the client may not publish it), RateLimited (its subject sends
+        too much). Returns True for this client's first frame (the core started publishing for it).
         """
+        if not self._may_publish:
+            self._admit_publishing()
+        if self._bucket is not None:
+            self._bucket.spend(len(frame))
         msg_type = self._type or self.message_type()
         msg = decode(frame, msg_type, msg_type.__ros_type__)  # before publishing: a bad first frame opens nothing
         endpoint = self._endpoint
@@ -93,6 +123,11 @@ class GatewayTopic:
             self._type = msg_type
         endpoint.dispatch(msg, endpoint.frames_of(msg, frame), sender)
         return first
+
+    def _admit_publishing(self) -> None:
+        if not self._may_publish:
+            self.check(Verb.PUBLISH)
+            self._may_publish = True
 
     def stop_publishing(self) -> None:
         """This client publishes no more (the topic lingers, latched, as for a closed socket)."""
@@ -123,10 +158,17 @@ class GatewayTopic:
     # -- the native socket (TopicPort) ----------------------------------------------------------
 
     def open(self, connection: TopicConnection) -> Frame | None:
-        return None if connection.outbox is None else self.start_reading(connection.outbox)
+        if connection.outbox is None:  # publish-only: its fence is known now, so say it now
+            self._admit_publishing()
+            return None
+        return self.start_reading(connection.outbox)
 
     def receive_frame(self, connection: TopicConnection, frame: Frame) -> None:
-        if self.publish(frame, connection.outbox):
+        try:
+            first = self.publish(frame, connection.outbox)
+        except (AccessRefused, RateLimited) as refused:
+            raise FrameRejected(refused.close_code, str(refused)) from None
+        if first:
             connection.published = True
 
     def close(self, connection: TopicConnection) -> None:

@@ -22,7 +22,8 @@ from typing import Annotated, Any
 from fastapi import APIRouter, Depends, HTTPException, Request
 from pydantic import BaseModel, StringConstraints
 
-from services.runtime.auth import token_required
+from services.access import Verb
+from services.core.visitors import FENCED, VisitorDep, require
 from services.runtime.rosparam import PARAMETER_TOKEN, check_parameter_value, parameter_tokens
 
 __all__ = ["ParameterTree", "router"]
@@ -113,22 +114,24 @@ _BAD_VALUE: dict[int | str, dict[str, Any]] = {
 _UNSET: dict[int | str, dict[str, Any]] = {404: {"description": "No such parameter"}}
 
 
-@router.get("", responses=_UNSET | _BAD_NAME)
-@router.get("/{name:path}", responses=_UNSET | _BAD_NAME)
-async def get_parameter(tree: TreeDep, name: ParameterName = "") -> NamedValue:
+@router.get("", responses=FENCED | _UNSET | _BAD_NAME)
+@router.get("/{name:path}", responses=FENCED | _UNSET | _BAD_NAME)
+async def get_parameter(tree: TreeDep, visitor: VisitorDep, name: ParameterName = "") -> NamedValue:
     """A parameter's value; a namespace's is the mapping of what is under it."""
     full = "/" + name.strip("/")
+    require(visitor, Verb.READ, full)
     try:
         return NamedValue(name=full, value=tree.get(full))
     except KeyError:
         raise HTTPException(404, f"no parameter {full}: see GET /api/rosparam for all") from None
 
 
-@router.put("", dependencies=[Depends(token_required)], responses=_BAD_VALUE)
-@router.put("/{name:path}", dependencies=[Depends(token_required)], responses=_BAD_VALUE)
-async def set_parameter(body: ParameterValue, tree: TreeDep, name: ParameterName = "") -> NamedValue:
+@router.put("", responses=FENCED | _BAD_VALUE)
+@router.put("/{name:path}", responses=FENCED | _BAD_VALUE)
+async def set_parameter(body: ParameterValue, tree: TreeDep, visitor: VisitorDep, name: ParameterName = "") -> NamedValue:
     """Set a parameter (a mapping sets the whole namespace under the name)."""
     full = "/" + name.strip("/")
+    require(visitor, Verb.SET_PARAMETER, full)
     try:
         tree.set(full, body.value)
     except ValueError as error:
@@ -136,10 +139,11 @@ async def set_parameter(body: ParameterValue, tree: TreeDep, name: ParameterName
     return NamedValue(name=full, value=body.value)
 
 
-@router.delete("/{name:path}", dependencies=[Depends(token_required)], responses=_UNSET | _BAD_NAME)
-async def delete_parameter(tree: TreeDep, name: ParameterName) -> NamedValue:
+@router.delete("/{name:path}", responses=FENCED | _UNSET | _BAD_NAME)
+async def delete_parameter(tree: TreeDep, visitor: VisitorDep, name: ParameterName) -> NamedValue:
     """Delete a parameter and everything under it; the answer holds what was deleted."""
     full = "/" + name.strip("/")
+    require(visitor, Verb.SET_PARAMETER, full)
     try:
         value = tree.get(full)
         tree.delete(full)

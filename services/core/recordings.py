@@ -11,6 +11,10 @@ recording costs the publishers nothing more than one more reader. Files go to
 ``SKYDECK_RECORDINGS_DIR`` (default ``$XDG_DATA_HOME/skydeck/recordings``, else
 ``~/.local/share/skydeck/recordings``). Starting and stopping need the token when one is set;
 listing and downloading are reads, open as reading topics is.
+
+In a class (docs/security.md), a student records only topics they may read (naming them), stops
+only their own recording, and lists and downloads only the files they made; the instructor
+does everything.
 """
 
 from __future__ import annotations
@@ -27,12 +31,13 @@ from fastapi import APIRouter, Body, Depends, HTTPException, Request
 from fastapi.responses import FileResponse
 from pydantic import BaseModel, Field
 
+from services.access import Pass, Role, Verb
 from services.bag.errors import BagError
 from services.bag.recording import Limits, Recording, TopicSelection
 from services.bag.writer import BagWriter
 from services.core.core_node import CoreNode
 from services.core.registry import Registry
-from services.runtime.auth import token_required
+from services.core.visitors import FENCED, VisitorDep, require
 from services.runtime.subscription import RawSubscription
 from shared_models import Message, resolve_name
 
@@ -64,11 +69,13 @@ class Recordings:
         self._taps: list[tuple[str, RawSubscription]] = []
         self._task: asyncio.Task[None] | None = None
         self._stopped: dict[str, Any] | None = None
+        self._owners: dict[str, str] = {}  # file name -> the subject who recorded it (this core's)
 
     # -- starting and stopping -----------------------------------------------------------------
 
-    def start(self, request: StartRecording) -> dict[str, Any]:
-        """Start recording; BagError (answered 400/409) if one is running or the request is wrong."""
+    def start(self, request: StartRecording, *, owner: str = "") -> dict[str, Any]:
+        """Start recording (for ``owner``, a subject's name); BagError (answered 400/409) if one
+        is running or the request is wrong."""
         if self._current is not None:
             raise _Busy(f"already recording to {self._current.writer.path.name}: stop it first")
         try:
@@ -87,6 +94,7 @@ class Recordings:
             suffix += 1
             path = self.folder / time.strftime(f"skydeck_%Y_%m_%d-%H_%M_%S_{suffix}.mcap")
         writer = BagWriter.create(path, metadata=self._metadata())
+        self._owners[path.name] = owner
         self._current = Recording(writer, selection, self._subscribe, limits=Limits(duration_s=request.max_duration_s))
         self._current.update(self._registry.graph()["topics"])
         self._task = asyncio.get_running_loop().create_task(self._run())
@@ -180,6 +188,15 @@ class Recordings:
             "elapsed_s": round(time.monotonic() - recording.started_s, 3),
         }
 
+    def owner_of(self, name: str) -> str:
+        """Who recorded the file ``name`` in this core's life (``""``: nobody known)."""
+        return self._owners.get(name, "")
+
+    @property
+    def recording_owner(self) -> str | None:
+        """Who the recording in progress is for (None: none is in progress)."""
+        return None if self._current is None else self.owner_of(self._current.writer.path.name)
+
     def files(self) -> list[dict[str, Any]]:
         """Every ``.mcap`` file of the folder, newest first."""
         if not self.folder.is_dir():
@@ -223,25 +240,62 @@ def _recordings(request: Request) -> Recordings:
 RecordingsDep = Annotated[Recordings, Depends(_recordings)]
 
 
-@router.get("")
-async def list_recordings(recordings: RecordingsDep) -> dict[str, Any]:
-    """The recordings folder: its files (newest first) and the recording in progress, if any."""
-    return {"folder": str(recordings.folder), "current": recordings.status(), "files": recordings.files()}
+def _owns(visitor: Pass, owner: str | None) -> bool:
+    """Whether ``visitor`` may see and stop a recording made for ``owner``: its own, or anyone's
+    for whoever may record everything (the instructor; anyone with no class)."""
+    return visitor.unlimited or (visitor.subject.role is Role.STUDENT and owner == visitor.subject.name)
 
 
-@router.post("", dependencies=[Depends(token_required)], responses={409: {"description": "Already recording"}})
-async def start_recording(recordings: RecordingsDep, request: Annotated[StartRecording | None, Body()] = None) -> dict[str, Any]:
+def _require_reading(visitor: Pass) -> None:
+    """401 for a visitor a class shuts out (no token); reading recordings is open otherwise."""
+    if visitor.subject.role is Role.ANONYMOUS:
+        require(visitor, Verb.READ, "/api/recordings")
+
+
+@router.get("", responses=FENCED)
+async def list_recordings(recordings: RecordingsDep, visitor: VisitorDep) -> dict[str, Any]:
+    """The recordings folder: its files (newest first) and the recording in progress, if any (a
+    student sees their own)."""
+    _require_reading(visitor)
+    files = recordings.files()
+    current = recordings.status()
+    if visitor.subject.role is Role.STUDENT:
+        files = [item for item in files if _owns(visitor, recordings.owner_of(item["name"]))]
+        if current.get("name") and not _owns(visitor, recordings.owner_of(current["name"])):
+            current = {"recording": current.get("recording", False)}
+    return {"folder": str(recordings.folder), "current": current, "files": files}
+
+
+@router.post(
+    "", responses=FENCED | {404: {"description": "A topic is not a ROS name"}, 409: {"description": "Already recording"}}
+)
+async def start_recording(
+    recordings: RecordingsDep, visitor: VisitorDep, request: Annotated[StartRecording | None, Body()] = None
+) -> dict[str, Any]:
     """Start recording every topic (or the ones named) into a new MCAP file."""
-    return recordings.start(request or StartRecording())
+    request = request or StartRecording()
+    for topic in [resolve_name(topic) for topic in request.topics] or ["/**"]:  # /**: every topic
+        require(visitor, Verb.RECORD, topic)
+    return recordings.start(request, owner=visitor.subject.name)
 
 
-@router.post("/stop", dependencies=[Depends(token_required)], responses={409: {"description": "Nothing to stop"}})
-async def stop_recording(recordings: RecordingsDep) -> dict[str, Any]:
+@router.post("/stop", responses=FENCED | {409: {"description": "Nothing to stop"}})
+async def stop_recording(recordings: RecordingsDep, visitor: VisitorDep) -> dict[str, Any]:
     """Stop the recording in progress and finish its file."""
+    if visitor.subject.role is Role.ANONYMOUS:
+        require(visitor, Verb.RECORD, "/**")  # 401 where a token is needed
+    owner = recordings.recording_owner
+    if owner is not None and not _owns(visitor, owner):
+        whose = f"{owner}'s" if owner else "not yours"
+        raise HTTPException(403, f"the recording in progress is {whose}: only its owner or the instructor may stop it")
     return await recordings.stop()
 
 
-@router.get("/{name}", response_class=FileResponse, responses={404: {"description": "No such recording"}})
-async def download_recording(name: str, recordings: RecordingsDep) -> FileResponse:
+@router.get("/{name}", response_class=FileResponse, responses=FENCED | {404: {"description": "No such recording"}})
+async def download_recording(name: str, recordings: RecordingsDep, visitor: VisitorDep) -> FileResponse:
     """Download one recording (an MCAP file: `skydeck bag info`, Foxglove, Lichtblick)."""
-    return FileResponse(recordings.path_of(name), media_type="application/octet-stream", filename=name)
+    _require_reading(visitor)
+    path = recordings.path_of(name)
+    if visitor.subject.role is Role.STUDENT and not _owns(visitor, recordings.owner_of(name)):
+        raise HTTPException(403, f"{visitor.subject} may download only the recordings they made: not {name}")
+    return FileResponse(path, media_type="application/octet-stream", filename=name)

@@ -39,6 +39,10 @@ class NodeRecord:
     counters: dict[str, tuple[int, float, float | None]] = field(default_factory=dict)
     # What this node was last told about each topic it subscribes to.
     told: dict[str, tuple[tuple[str, str], ...]] = field(default_factory=dict)
+    # The key the core forwards admitted calls to this node with (its session's; "" for none).
+    key: str = field(default="", repr=False)
+    # When its counts last grew (monotonic): the class page's last message age.
+    last_published: float | None = None
 
 
 def _names(entities: list[Entity]) -> set[str]:
@@ -67,12 +71,13 @@ class Registry:
 
     # -- changes ------------------------------------------------------------------------------
 
-    def register(self, description: NodeDescription, inbox: Inbox) -> NodeRecord | None:
-        """Add or replace a node; returns the record it replaced (another session), if any."""
+    def register(self, description: NodeDescription, inbox: Inbox, *, key: str = "") -> NodeRecord | None:
+        """Add or replace a node (``key``: what the core forwards calls to it with); returns the
+        record it replaced (another session), if any."""
         previous = self.nodes.get(description.name)
         if previous is not None:
             self._unindex(previous.description)
-        record = self.nodes[description.name] = NodeRecord(description, inbox)
+        record = self.nodes[description.name] = NodeRecord(description, inbox, key=key)
         self._index(description)
         self._changed(previous.description if previous else None, record)
         self._notify()
@@ -111,6 +116,8 @@ class Registry:
             rate = None
             if last is not None and now > last[1] and count >= last[0]:
                 rate = (count - last[0]) / (now - last[1])
+            if count and (last is None or count > last[0]):
+                record.last_published = now
             record.counters[topic] = (count, now, rate)
 
     def _index(self, description: NodeDescription) -> None:

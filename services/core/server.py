@@ -54,12 +54,13 @@ def serve(
     with the protocol ``endpoints`` plugged in."""
     configure_logging(settings.log_level)
     sock = core_socket if core_socket is not None else listen(settings)
+    app = create_app(settings, endpoints=endpoints)  # before announcing: a bad class file is its one line
     log = logging.getLogger("skydeck.core")
     log.info("core at http://%s:%d (dashboard /, every command /docs)", settings.host, settings.port)
     for served in endpoints:
         if served.socket is not None:
             log.info("%s endpoint at ws://%s:%d", served.plugin.name, settings.host, served.socket.getsockname()[1])
-    config = core_config(create_app(settings, endpoints=endpoints), settings)
+    config = core_config(app, settings)
     run(_Server(config).serve(sockets=[sock]))
 
 

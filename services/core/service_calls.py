@@ -6,15 +6,22 @@ Foxglove's service requests) all go through :meth:`ServiceCalls.start` (awaited:
 edge mapping them to its own reply:
 
     404  no service has that name (405: it is a topic)
-    401  the write token is missing or wrong
+    401  no token, or one nobody has, where one is needed (:mod:`services.access.policy`)
+    403  the caller's token may not call it (a student, outside their namespace; stopping
+         another's node, resetting the world: :func:`~services.access.policy.service_verb`)
+    429  the caller's token sends too much, or has too many calls waiting (a student: :mod:`services.access.rates`)
     400  a token that cannot go into a header
     503  the hosting node cannot be reached
     504  it did not answer in time (the gateway timeout, or the caller's own)
 
+The caller is a :class:`~services.access.fences.Pass`: who it is, checked here before anything
+is forwarded, so a call through the core is fenced even when the node behind it has no token.
+
 A reply from the service, whatever its status (200, 422 for a bad request, 500 when the
 handler raised), is handed back as it came. Services the core hosts for its guests (rosapi, a
 rosbridge client's) are answered in-process by :meth:`ServiceCalls.call_hosted`, which the core
-node's ``POST /api/core/NAME`` route uses too.
+node's ``POST /api/core/NAME`` route uses too; while one runs, :data:`CALLER` is its caller (so
+rosapi's parameter services act with the caller's rights, not the core's).
 """
 
 from __future__ import annotations
@@ -23,14 +30,15 @@ import asyncio
 import json
 import logging
 from collections.abc import Callable
+from contextvars import ContextVar
 from dataclasses import dataclass
 
 from pydantic import ValidationError
 
+from services.access import Fences, Pass, RateLimited, service_verb
 from services.core.guests import Guests
 from services.core.registry import Registry
 from services.core.settings import CoreSettings
-from services.runtime.auth import NOT_AUTHORISED, token_is_valid
 from services.runtime.errors import ServiceError
 from services.runtime.http_client import (
     Cancellable,
@@ -43,10 +51,13 @@ from services.runtime.http_client import (
 )
 from shared_models.errors import SkydeckError
 
-__all__ = ["CallOutcome", "ServiceCallFailed", "ServiceCalls", "ServiceReply", "error_reply"]
+__all__ = ["CALLER", "CallOutcome", "ServiceCallFailed", "ServiceCalls", "ServiceReply", "error_reply"]
 
 JSON = "application/json"
 logger = logging.getLogger("skydeck.core")
+
+CALLER: ContextVar[Pass] = ContextVar("skydeck_caller")
+"""Who called the service the core is answering now (set while a hosted service's handler runs)."""
 
 
 @dataclass(frozen=True)
@@ -124,7 +135,10 @@ class _Target:
 class ServiceCalls:
     """Routes a call to the node hosting the service (or answers it here for a guest)."""
 
-    def __init__(self, registry: Registry, guests: Guests, settings: CoreSettings, http: HttpClient) -> None:
+    def __init__(
+        self, registry: Registry, guests: Guests, settings: CoreSettings, http: HttpClient, fences: Fences
+    ) -> None:
+        self.fences = fences  # the core's: a caller that comes with a token only is admitted by them
         self._registry = registry
         self._guests = guests
         self._settings = settings
@@ -140,7 +154,7 @@ class ServiceCalls:
         name: str,
         body: bytes,
         *,
-        token: str,
+        caller: Pass,
         timeout_s: float | None = None,
         content_type: str | None = JSON,
     ) -> ServiceReply:
@@ -150,7 +164,7 @@ class ServiceCalls:
         """
         outcome: CallOutcome = await outcome_of(
             lambda on_done: self.start(
-                name, body, token=token, timeout_s=timeout_s, content_type=content_type, on_done=on_done
+                name, body, caller=caller, timeout_s=timeout_s, content_type=content_type, on_done=on_done
             )
         )
         if isinstance(outcome, ServiceCallFailed):
@@ -162,7 +176,7 @@ class ServiceCalls:
         name: str,
         body: bytes,
         *,
-        token: str,
+        caller: Pass,
         on_done: Callable[[CallOutcome], None],
         timeout_s: float | None = None,
         content_type: str | None = JSON,
@@ -174,54 +188,83 @@ class ServiceCalls:
         Returns what cancels the call, if it is still out."""
         timeout_s = timeout_s or self._settings.gateway_timeout_s
         try:
-            target = self._target(name, token=token, content_type=content_type)
+            target = self._target(name, body, caller=caller, content_type=content_type)
         except ServiceCallFailed as failed:
             on_done(failed)
             return None
         if target is None:
-            task = asyncio.get_running_loop().create_task(self._hosted(name, body, timeout_s, on_done))
+            task = asyncio.get_running_loop().create_task(self._hosted(name, body, caller, timeout_s, on_done))
             self._hosted_calls.add(task)
             task.add_done_callback(self._hosted_calls.discard)
             return task
+        counted = None if caller.bucket is None else _Counted(caller)
 
         def replied(outcome: Outcome) -> None:
+            if counted is not None:
+                counted.end()
             on_done(_served(outcome) if isinstance(outcome, HttpReply) else target.failed(outcome, timeout_s))
 
         try:
-            return self._http.start("POST", target.url, body, headers=target.headers, timeout_s=timeout_s, on_done=replied)
+            exchange = self._http.start("POST", target.url, body, headers=target.headers, timeout_s=timeout_s, on_done=replied)
         except (ValueError, HttpError) as error:
+            _call_ended(caller)
             on_done(target.failed(error, timeout_s))
             return None
+        if counted is None:
+            return exchange
+        counted.exchange = exchange
+        return counted
 
-    def _target(self, name: str, *, token: str, content_type: str | None) -> _Target | None:
-        """Where a call of ``name`` goes (None: a service hosted here), or ServiceCallFailed."""
+    def _target(self, name: str, body: bytes, *, caller: Pass, content_type: str | None) -> _Target | None:
+        """Where a call of ``name`` goes (None: a service hosted here), or ServiceCallFailed.
+
+        Once it returns, the call is one of the caller's calls in flight (:func:`_call_ended`
+        ends it)."""
         found = self._registry.service(name)
         if found is None:
             if self._registry.topic_type(name) is not None:
                 raise ServiceCallFailed(name, 405, f"{name} is a topic, not a service: GET it or open a WebSocket to it")
             raise ServiceCallFailed(name, 404, f"no service {name}: see `skydeck service list` or GET /api/graph")
-        # Checked here as well as on the node: a call through the core is refused even when the
-        # node behind it was started without the token.
-        if not token_is_valid(self._settings.token, token):
-            raise ServiceCallFailed(name, 401, NOT_AUTHORISED)
+        _admit(name, body, caller)
         _, record = found
         if record.description.url == self._guests.url:
             return None
         headers = {"content-type": content_type} if content_type else {}
+        # The node's session key where it has one: the call is admitted here, and the node, whose
+        # own token may be another's (a student's node, called by the instructor), takes the
+        # core's word for it. Else the caller's token (also when it came as ?token=: a browser).
+        token = record.key or caller.token
         if token:
-            headers["authorization"] = f"Bearer {token}"  # also when it came as ?token= (a browser)
+            headers["authorization"] = f"Bearer {token}"
         return _Target(name, record.description.name, record.description.url.rstrip("/") + name, headers)
 
-    async def _hosted(self, name: str, body: bytes, timeout_s: float, on_done: Callable[[CallOutcome], None]) -> None:
+    async def _hosted(
+        self, name: str, body: bytes, caller: Pass, timeout_s: float, on_done: Callable[[CallOutcome], None]
+    ) -> None:
         try:
-            reply = await self.call_hosted(name, body, timeout_s=timeout_s)
+            reply = await self._answer_hosted(name, body, caller=caller, timeout_s=timeout_s)
         except Exception:  # a fault of ours: said in the log, as uvicorn says an app's
             logger.exception("calling %s, hosted by the core, failed", name)
             reply = error_reply(500, f"{name} failed in the core: see its log")
+        finally:
+            _call_ended(caller)
         on_done(reply)
 
-    async def call_hosted(self, name: str, body: bytes, *, timeout_s: float | None = None) -> ServiceReply:
-        """Answer a call to a service the core hosts for a guest, as a node's route would."""
+    async def call_hosted(self, name: str, body: bytes, *, caller: Pass) -> ServiceReply:
+        """Answer a call to a service the core hosts for a guest, as a node's route would (its
+        caller fenced as every call is)."""
+        try:
+            _admit(name, body, caller)
+        except ServiceCallFailed as failed:
+            return failed.reply()
+        try:
+            return await self._answer_hosted(name, body, caller=caller)
+        finally:
+            _call_ended(caller)
+
+    async def _answer_hosted(
+        self, name: str, body: bytes, *, caller: Pass, timeout_s: float | None = None
+    ) -> ServiceReply:
         timeout_s = timeout_s or self._settings.gateway_timeout_s
         service = self._guests.service(name)
         if service is None:
@@ -234,6 +277,7 @@ class ServiceCalls:
                 for e in error.errors(include_url=False, include_input=False)
             ]
             return ServiceReply(422, json.dumps({"detail": detail}).encode())
+        CALLER.set(caller)  # this task's: the handler's own calls act with the caller's rights
         try:
             async with asyncio.timeout(timeout_s):
                 response = await service.handle(request, logger)
@@ -242,6 +286,50 @@ class ServiceCalls:
         except SkydeckError as error:
             return error_reply(error.http_status, str(error))
         return ServiceReply(200, response.model_dump_json().encode())
+
+
+def _admit(name: str, body: bytes, caller: Pass) -> None:
+    """ServiceCallFailed (401, 403, 429) unless ``caller`` may call ``name`` with ``body`` now;
+    a limited caller's call then counts as one in flight (:func:`_call_ended` ends it)."""
+    if caller.unlimited:
+        return
+    verb, target = service_verb(name, body)
+    refusal = caller.refusal(verb, target)
+    if refusal is not None:
+        raise ServiceCallFailed(name, refusal.http_status, str(refusal))
+    bucket = caller.bucket
+    if bucket is not None:
+        try:
+            bucket.spend(len(body))
+            bucket.call_started()
+        except RateLimited as limited:
+            raise ServiceCallFailed(name, limited.http_status, str(limited)) from None
+
+
+def _call_ended(caller: Pass) -> None:
+    if caller.bucket is not None:
+        caller.bucket.call_ended()
+
+
+class _Counted:
+    """A limited caller's call under way, ended once as one of the caller's calls in flight: by
+    its reply, or by a cancel (after which no reply comes)."""
+
+    __slots__ = ("_caller", "exchange")
+
+    def __init__(self, caller: Pass) -> None:
+        self._caller: Pass | None = caller
+        self.exchange: Cancellable | None = None
+
+    def end(self) -> None:
+        if self._caller is not None:
+            _call_ended(self._caller)
+            self._caller = None
+
+    def cancel(self) -> None:
+        if self.exchange is not None:
+            self.exchange.cancel()
+        self.end()
 
 
 def _served(reply: HttpReply) -> ServiceReply:

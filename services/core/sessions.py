@@ -1,17 +1,25 @@
-"""The core's side of node sessions (``/api/session``): register, update, stats, leave."""
+"""The core's side of node sessions (``/api/session``): register, update, stats, leave.
+
+A session is admitted by the core's fences for the token it presents: a node registers only if
+that token may run a node of its name and publish, read and serve what the node declares (a
+student's node, only under their namespace, plus what the class shares); an update is checked
+again. A refused node is told why in one line (it stops, saying so).
+"""
 
 from __future__ import annotations
 
 import asyncio
 import contextlib
 import logging
+import secrets
 import time
 
 from pydantic import ValidationError
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
+from services.access import Fences, Pass, Role, Verb
 from services.core.registry import Registry
-from services.runtime.auth import token_matches
+from services.runtime.auth import presented_token
 from services.runtime.edge.frames import close_with
 from services.runtime.protocol import (
     CoreFrameModel,
@@ -32,21 +40,24 @@ __all__ = ["serve_session"]
 logger = logging.getLogger("skydeck.core")
 
 NOT_AUTHORISED_SESSION = "registering needs the core's token (SKYDECK_TOKEN): Authorization: Bearer TOKEN"
+NOT_IN_CLASS_SESSION = "this core runs a class: registering a node needs your class token (SKYDECK_TOKEN=TOKEN)"
 # A node with the wrong token retries twice a second: say so once in a while, not every time.
 _REFUSAL_LOG_EVERY_S = 10.0
 _last_refusal_log_s = -_REFUSAL_LOG_EVERY_S
 
 
-async def serve_session(websocket: WebSocket, registry: Registry, *, token: str = "") -> None:
+async def serve_session(websocket: WebSocket, registry: Registry, fences: Fences) -> None:
     """Hold one node's registration for as long as its socket is open.
 
-    With a ``token``, a session that does not present it is closed with 1008 before it can
-    register: otherwise any local process could take a node's name and redirect its callers.
+    Where a token is needed (a process token, a class), a session that presents none (or one
+    nobody has) is closed with 1008 before it can register: otherwise any local process could
+    take a node's name and redirect its callers. A node its token may not run is refused.
     """
     await websocket.accept()
-    if not token_matches(token, websocket):
+    guest = fences.admit(presented_token(websocket))
+    if guest.subject.role is Role.ANONYMOUS and not guest.unlimited:
         _log_refusal(websocket)
-        await close_with(websocket, Close.POLICY, NOT_AUTHORISED_SESSION)
+        await close_with(websocket, Close.POLICY, NOT_IN_CLASS_SESSION if fences.in_class else NOT_AUTHORISED_SESSION)
         return
     outgoing: asyncio.Queue[CoreFrameModel] = asyncio.Queue()
     writer = asyncio.create_task(_write(websocket, outgoing))
@@ -61,12 +72,13 @@ async def serve_session(websocket: WebSocket, registry: Registry, *, token: str 
         if not isinstance(first, RegisterFrame):
             await close_with(websocket, Close.INVALID_FRAME, "the first frame must be a register frame")
             return
-        if (refusal := _learn_types(first.node)) is not None:
+        if (refusal := _fenced(guest, first.node) or _learn_types(first.node)) is not None:
             await _refuse(websocket, writer, refusal)
             return
         name = first.node.name
-        outgoing.put_nowait(RegisteredFrame())
-        replaced = registry.register(first.node, send)
+        key = secrets.token_urlsafe(32)  # this session's: calls the core admitted reach the node with it
+        outgoing.put_nowait(RegisteredFrame(key=key))
+        replaced = registry.register(first.node, send, key=key)
         if replaced is not None:
             replaced.inbox(RejectedFrame(reason=f"a newer node took the name {name} (pid {first.node.pid})"))
         logger.info("node %s registered from %s (pid %d)", name, first.node.url, first.node.pid)
@@ -80,7 +92,7 @@ async def serve_session(websocket: WebSocket, registry: Registry, *, token: str 
                 await close_with(websocket, Close.UNSUPPORTED, "session frames are JSON text, not binary")
                 return
             if isinstance(frame, UpdateFrame) and frame.node.name == name:
-                if (refusal := _learn_types(frame.node)) is not None:
+                if (refusal := _fenced(guest, frame.node) or _learn_types(frame.node)) is not None:
                     await _refuse(websocket, writer, refusal)
                     return
                 registry.update(frame.node, send)
@@ -95,6 +107,25 @@ async def serve_session(websocket: WebSocket, registry: Registry, *, token: str 
         if name is not None:
             registry.unregister(name, send)
             logger.info("node %s left", name)
+
+
+def _fenced(guest: Pass, node: NodeDescription) -> str | None:
+    """Why ``guest``'s token may not run ``node`` as it describes itself (its name, what it
+    publishes, reads and serves), or None."""
+    if guest.unlimited:
+        return None
+    asked = (
+        [(Verb.REGISTER, node.name)]
+        + [(Verb.PUBLISH, entity.name) for entity in node.publications]
+        + [(Verb.READ, entity.name) for entity in node.subscriptions]
+        + [(Verb.SERVE, entity.name) for entity in node.services]
+    )
+    for verb, name in asked:
+        refusal = guest.refusal(verb, name)
+        if refusal is not None:
+            logger.warning("refused node %s (%s's token): %s", node.name, guest.subject, refusal)
+            return str(refusal)
+    return None
 
 
 def _learn_types(node: NodeDescription) -> str | None:

@@ -26,6 +26,16 @@ class CoreSettings(ProcessSettings):
     # last publishing socket closed, so `topic pub --once` reaches subscribers that link late.
     gateway_linger_s: float = Field(default=2.0, ge=0)
 
+    # A class (docs/security.md): its tokens file (`name,token` lines, `skydeck class` writes it)
+    # and, optionally, its rules (what students share, YAML); each student's limits on what
+    # enters the core through their token.
+    class_tokens: Path | None = Field(default=None, description="the class's tokens file: one token per student")
+    class_rules: Path | None = Field(default=None, description="the class's rules (YAML); default: services/access/policy.py")
+    class_gradebook: Path | None = Field(default=None, description="the grades the class page shows (read when asked)")
+    student_messages_per_s: float = Field(default=200.0, gt=0, description="messages a student's token may send a second")
+    student_bytes_per_s: float = Field(default=float(1 << 20), gt=0, description="bytes a student's token may send a second")
+    student_calls_in_flight: int = Field(default=16, ge=1, description="service calls of a student's token waiting at once")
+
     # Recordings made from the dashboard (`/api/recordings`); None: $XDG_DATA_HOME/skydeck/recordings.
     recordings_dir: Path | None = None
 

@@ -5,72 +5,40 @@ the submissions folder (``skydeck grade ASSIGNMENT.yaml --class SUBMISSIONS [--r
     found = find_submissions(Path("submissions"), names)
     found.submissions[0].files                   # submissions/ada/*.py, sorted
 
-A student's name is a ROS name segment (a letter, then letters, digits or ``_``, at most 63): in
-a class it names the student's namespace ``/NAME``, here their folder. ``instructor`` is the
-instructor's, and two names that differ only in case are one student twice. These are the class's
-rules for a roster (``skydeck class``'s tokens follow them too).
+A student's name is the class's (:mod:`services.classroom.roster`, ``skydeck class``'s roster):
+a ROS name segment, ``/NAME`` their namespace, here their folder; not ``instructor``; two names
+that differ only in case are one student twice.
 """
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from services.classroom.roster import ClassroomError, check_names
+from services.classroom.roster import read_roster as read_class_roster
 from shared_models.errors import SkydeckError
-from shared_models.text_files import read_text_file
 
-__all__ = ["INSTRUCTOR", "Found", "RosterError", "Submission", "check_student_name", "find_submissions", "read_roster"]
-
-INSTRUCTOR = "instructor"
-"""The instructor's name in a class (no student may have it)."""
-
-_NAME = re.compile(r"[A-Za-z][A-Za-z0-9_]{0,62}")
-
+__all__ = ["Found", "RosterError", "Submission", "check_student_name", "find_submissions", "read_roster"]
 
 class RosterError(SkydeckError):
     """A roster or a submissions folder that cannot be graded (the message says which and why)."""
 
 
 def check_student_name(name: str) -> str:
-    """``name`` if it can be a student's, else RosterError saying why."""
-    if not _NAME.fullmatch(name):
-        raise RosterError(
-            f"{name!r} cannot be a student's name: a letter, then letters, digits or _ (at most 63), "
-            "since it names their namespace /NAME"
-        )
-    if name == INSTRUCTOR:
-        raise RosterError(f"{INSTRUCTOR!r} is the instructor's name: give the student another")
-    return name
-
-
-def _check_names(names: list[tuple[str, str]]) -> list[str]:
-    """The names, each checked, none twice (in any case); ``where`` of each says where it is."""
-    seen: dict[str, str] = {}
-    for where, name in names:
-        try:
-            check_student_name(name)
-        except RosterError as error:
-            raise RosterError(f"{where}: {error}") from None
-        twin = seen.get(name.lower())
-        if twin is not None:
-            same = "twice" if twin == name else f"as {twin!r} and {name!r} (names differ in more than case)"
-            raise RosterError(f"{where}: {name!r} is named {same}: each student needs a name of their own")
-        seen[name.lower()] = name
-    return [name for _, name in names]
+    """``name`` if it can be a student's (the class's rule), else RosterError saying why."""
+    try:
+        return check_names([("", name)])[0]
+    except ClassroomError as error:
+        raise RosterError(str(error).removeprefix(": ")) from None
 
 
 def read_roster(path: Path) -> list[str]:
-    """The students of a roster file: one name a line; blank lines and what follows ``#`` skipped."""
-    text = read_text_file(path, "roster file", lambda reason: RosterError(f"{path}: {reason}"))
-    names = []
-    for number, line in enumerate(text.splitlines(), start=1):
-        name = line.split("#", 1)[0].strip()
-        if name:
-            names.append((f"{path}:{number}", name))
-    if not names:
-        raise RosterError(f"{path}: the roster names no student")
-    return _check_names(names)
+    """The students of a roster file, as ``skydeck class`` reads it (a class of any size here)."""
+    try:
+        return list(read_class_roster(path, max_students=None).students)
+    except ClassroomError as error:
+        raise RosterError(str(error)) from None
 
 
 @dataclass(frozen=True)
@@ -107,7 +75,10 @@ def find_submissions(folder: Path, roster: list[str] | None = None) -> Found:
         raise RosterError(f"{folder}: no such folder (the submissions: one folder per student, NAME/*.py)")
     folders = sorted(entry for entry in folder.iterdir() if entry.is_dir() and not entry.name.startswith("."))
     if roster is None:
-        names = _check_names([(str(entry), entry.name) for entry in folders])
+        try:
+            names = check_names([(str(entry), entry.name) for entry in folders])
+        except ClassroomError as error:
+            raise RosterError(str(error)) from None
         if not names:
             raise RosterError(f"{folder}: no student's folder in it (one folder per student, NAME/*.py)")
         return Found([_submission(folder, name) for name in names])

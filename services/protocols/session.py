@@ -5,10 +5,17 @@ An adapter (rosbridge, Foxglove) translates its frames into these calls and noth
 - ``start_reading(topic, ...)``: an :class:`Outbox` opened on the topic's
   :class:`~services.core.gateway_topic.GatewayTopic`, written to the socket by the edge's own
   writer (``write_outbox``) in the protocol's form (``encode``);
-- ``publish(topic, text)``: the same validation and token as a native socket;
+- ``publish(topic, text)``: the same validation, fences and "no echo" as a native socket (back to
+  its own readings only with ``echo``);
 - ``call(service, body)``: the one service-call path of the HTTP gateway;
+- ``visitor``: who the connection's token is and what it may do (:mod:`services.access`), checked
+  by the topic views and the call path; ``authenticate(token)`` for a token sent later;
 - ``guest``: the connection as the graph shows it (``/rosbridge_client_3``);
 - ``serve(frames)``: the adapter's frame loop, beside the stall watch a native reader has.
+
+A refusal of the fences is an :class:`~services.access.AccessRefused` (a SkydeckError) that the
+adapter answers in its own way, for that op alone. A student's connection that publishes more
+than their rate allows is shed: ``serve`` returns the reason (close 4002) as for a stall.
 
 Each topic a connection reads has its own bounded outbox and writer, so a client that falls
 behind loses its own oldest frames; one that stops reading altogether (a send has waited for
@@ -32,15 +39,16 @@ from typing import Any
 
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
+from services.access import Pass, RateLimited, Role, Verb
 from services.core.access import CoreAccess
 from services.core.gateway_topic import GatewayTopic
 from services.core.guests import Guest
 from services.core.service_calls import ServiceReply
-from services.runtime.auth import NOT_AUTHORISED, presented_token, token_is_valid
+from services.protocols.ops import Refused
+from services.runtime.auth import presented_token
 from services.runtime.edge.frames import FrameRejected
 from services.runtime.edge.outbox import Outbox
 from services.runtime.edge.pump import Encode, watch_stall, write_outbox
-from services.runtime.wire import Close
 from shared_models import Message
 
 __all__ = ["ClientSession", "Reading", "incoming"]
@@ -88,12 +96,13 @@ class ClientSession:
     def __init__(self, access: CoreAccess, websocket: WebSocket, guest: Guest, *, echo: bool = False) -> None:
         self.access = access
         self.guest = guest
+        self.visitor: Pass = access.fences.admit(presented_token(websocket))
         self.echo = echo
-        self.token = presented_token(websocket)
         self._send = websocket.send
         self.readings: dict[str, Reading] = {}
         self._publications: dict[str, GatewayTopic] = {}
         self._replies_waiting: list[float] = []  # since when each reply being sent has waited
+        self._shed: asyncio.Future[FrameRejected] = asyncio.get_running_loop().create_future()
 
     async def serve(self, frames: Coroutine[Any, Any, None], *, advice: str) -> FrameRejected | None:
         """Run the adapter's frame loop ``frames`` until the client leaves; or, if the client
@@ -106,10 +115,12 @@ class ClientSession:
             watch_stall(self._waiting_since, self._dropped, self.access.settings.reader_stall_s, advice)
         )
         try:
-            done, _ = await asyncio.wait((reading, watching), return_when=asyncio.FIRST_COMPLETED)
+            done, _ = await asyncio.wait((reading, watching, self._shed), return_when=asyncio.FIRST_COMPLETED)
         finally:
             reading.cancel()
             watching.cancel()
+        if self._shed in done:
+            return self._shed.result()
         if reading in done:
             reading.result()  # an adapter's own error is raised, not hidden
             return None
@@ -125,15 +136,16 @@ class ClientSession:
     def _dropped(self) -> int:
         return sum(reading.outbox.dropped for reading in self.readings.values())
 
-    @property
-    def may_write(self) -> bool:
-        """Whether this connection may publish and call services (the write token)."""
-        return token_is_valid(self.access.settings.token, self.token)
-
-    def check_may_write(self) -> None:
-        """Raise FrameRejected (1008, NOT_AUTHORISED) unless the connection may write."""
-        if not self.may_write:
-            raise FrameRejected(Close.POLICY, NOT_AUTHORISED)
+    def authenticate(self, token: str) -> None:
+        """The client presents ``token`` now (rosbridge's ``auth``): from here on the connection
+        acts as its subject. Refused for a token nobody has."""
+        visitor = self.access.fences.admit(token)
+        if visitor.subject.role is Role.ANONYMOUS and not visitor.unlimited:
+            raise Refused(
+                "auth: the mac is not this core's token (SKYDECK_TOKEN), nor rosauth's MAC made with it in time, "
+                "nor a class token"
+            )
+        self.visitor = visitor
 
     # -- reading --------------------------------------------------------------------------------
 
@@ -145,15 +157,21 @@ class ClientSession:
         rate_hz: float | None = None,
         paced_queue: bool = False,
         encode: Encode | None = None,
+        for_client: bool = True,
     ) -> Reading:
         """Send ``topic``'s frames to this socket (replacing an earlier reading of it).
 
         ``queue`` frames may wait before the oldest is dropped; with ``rate_hz``, one frame is
         sent at most that often: the newest (the queue holds one), or with ``paced_queue`` the
-        oldest of ``queue``. A latched topic's latest frame goes first.
+        oldest of ``queue``. A latched topic's latest frame goes first. AccessRefused if the
+        client may not read it; ``for_client=False`` reads for the adapter itself (Foxglove's
+        clock, parameter events it filters), unfenced.
         """
+        view = GatewayTopic(
+            self.access.core, self.access.registry, topic, None, visitor=self.visitor if for_client else None
+        )
+        view.check(Verb.READ)  # before the reading it replaces stops: a refusal changes nothing
         self.stop_reading(topic)
-        view = GatewayTopic(self.access.core, self.access.registry, topic, None)
         outbox = Outbox(1 if rate_hz and not paced_queue else max(1, queue))
         reading = Reading(view, outbox)
         latched = view.start_reading(outbox)
@@ -181,12 +199,15 @@ class ClientSession:
         ``latched``, its latest message goes to subscribers that come later.
 
         Raises FrameRejected(1008) when the type is missing for a new topic or differs from the
-        topic's.
+        topic's, AccessRefused when the client may not publish it.
         """
         view = self._publications.get(topic)
         if view is not None and declared in (None, view.message_type()) and view.latched == latched:
             return view
-        view = GatewayTopic(self.access.core, self.access.registry, topic, declared, latched=latched)
+        view = GatewayTopic(
+            self.access.core, self.access.registry, topic, declared, visitor=self.visitor, latched=latched
+        )
+        view.check(Verb.PUBLISH)
         view.message_type()  # refuses a type that does not fit before anything is published
         self.stop_publishing(topic)
         view.advertise()
@@ -202,12 +223,17 @@ class ClientSession:
         """Validate and publish one frame on ``topic``, to everyone (this connection too, with
         ``echo``); the first frame of a topic not declared yet declares it (``latched``).
 
-        Raises FrameRejected: 1008 without the token or a type, 1007 for a frame of another type.
+        Raises FrameRejected (1008 without a type, 1007 for a frame of another type),
+        AccessRefused (the client may not publish it). A frame over the subject's rate is
+        dropped and the connection shed (``serve`` returns the reason, 4002).
         """
-        self.check_may_write()
         view = self._publications.get(topic) or self.declare(topic, None, latched=latched)
         reading = None if self.echo else self.readings.get(topic)
-        view.publish(text, reading.outbox if reading is not None else None)
+        try:
+            view.publish(text, reading.outbox if reading is not None else None)
+        except RateLimited as limited:
+            if not self._shed.done():
+                self._shed.set_result(FrameRejected(limited.close_code, str(limited)))
 
     def stop_publishing(self, topic: str) -> bool:
         """This connection publishes ``topic`` no more; False if it did not."""
@@ -222,7 +248,7 @@ class ClientSession:
 
     async def call(self, service: str, body: bytes, *, timeout_s: float | None = None) -> ServiceReply:
         """Call ``service`` through the gateway's one call path (raises ServiceCallFailed)."""
-        return await self.access.calls.call(service, body, token=self.token, timeout_s=timeout_s)
+        return await self.access.calls.call(service, body, caller=self.visitor, timeout_s=timeout_s)
 
     # -- the end --------------------------------------------------------------------------------
 

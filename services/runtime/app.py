@@ -16,7 +16,7 @@ from fastapi.responses import JSONResponse, Response
 from starlette.requests import Request as HTTPRequest
 from starlette.websockets import WebSocket
 
-from services.runtime.auth import NOT_AUTHORISED, token_matches
+from services.runtime.auth import NOT_AUTHORISED, presented_token, token_is_valid, token_matches
 from services.runtime.edge.topic_socket import serve_topic_socket
 from services.runtime.edge_checks import edge_checks
 from services.runtime.endpoint import TopicEndpoint
@@ -41,6 +41,7 @@ class NodeApp:
         health: Callable[[], dict[str, Any]],
     ) -> None:
         self._token = token
+        self._core_key = ""  # the core's key for calls it forwards (see accept_core_key)
         self._stall_timeout_s = stall_timeout_s
         self._logger = logging.getLogger(f"{NODE_LOGGERS}.{name.lstrip('/')}")
         self.fastapi = FastAPI(
@@ -56,6 +57,18 @@ class NodeApp:
             return health()
 
         self.fastapi.add_api_route("/health", _health, methods=["GET"], tags=["node"], summary="Liveness")
+
+    def accept_core_key(self, key: str) -> None:
+        """Take ``key`` as this node's token for service calls from now on, besides its own: the
+        core it registered with forwards the calls its fences admitted with it (a new key each
+        registration), so a caller the core lets through (an instructor calling a student's node)
+        is not refused here for presenting another token than the node's."""
+        self._core_key = key
+
+    def _may_call(self, request: HTTPRequest) -> bool:
+        if token_matches(self._token, request):
+            return True
+        return bool(self._core_key) and token_is_valid(self._core_key, presented_token(request))
 
     # -- topics -------------------------------------------------------------------------------
 
@@ -96,7 +109,7 @@ class NodeApp:
         logger = self._logger
 
         async def call(http_request: Any, request: Any = None) -> Any:
-            if not token_matches(self._token, http_request):
+            if not self._may_call(http_request):
                 return JSONResponse({"detail": NOT_AUTHORISED}, status_code=401)
             # A ServiceHandlerError (the handler raised) answers 500 through install_error_handlers.
             return await service.handle(request if request is not None else request_type(), logger)

@@ -2,7 +2,9 @@
 
 When a token is set, every service call and every publish needs it, as
 ``Authorization: Bearer TOKEN`` or, for browsers' WebSockets, ``?token=TOKEN``. Reading topics
-and the registry stays open. Tokens are compared in constant time and never logged.
+and the registry stays open. Tokens are compared in constant time and never logged. (A node
+checks its one token here; the core asks its fences, :mod:`services.access`, which also know
+a class's tokens.)
 """
 
 from __future__ import annotations
@@ -11,8 +13,7 @@ import hmac
 import logging
 import re
 
-from starlette.exceptions import HTTPException
-from starlette.requests import HTTPConnection, Request
+from starlette.requests import HTTPConnection
 
 from services.runtime.wire import TOKEN_QUERY_PARAMETER
 
@@ -23,7 +24,6 @@ __all__ = [
     "RedactTokens",
     "bearer_token",
     "presented_token",
-    "token_required",
     "token_is_valid",
     "token_matches",
 ]
@@ -52,12 +52,6 @@ def token_matches(expected: str, connection: HTTPConnection) -> bool:
     return token_is_valid(expected, presented_token(connection))
 
 
-def token_required(request: Request) -> None:
-    """A route dependency of the core's writes: 401 without the core's token (``app.state.settings``)."""
-    if not token_matches(request.app.state.settings.token, request):
-        raise HTTPException(401, NOT_AUTHORISED)
-
-
 def token_is_valid(expected: str, presented: str) -> bool:
     """Whether ``presented`` is the token (in constant time); always true when none is configured."""
     if not expected:
@@ -66,14 +60,16 @@ def token_is_valid(expected: str, presented: str) -> bool:
 
 
 _SECRETS = re.compile(r"(?i)(authorization:\s*(?:bearer\s+)?|[?&]token=)[^\s&]+")
+_KEYS = re.compile(r'("key":\s*")[^"]*')  # a session's key in a logged frame (RegisteredFrame)
 
 
 class RedactTokens(logging.Filter):
-    """Replaces the values of ``Authorization`` headers and ``token=`` queries with ``***``."""
+    """Replaces the values of ``Authorization`` headers, ``token=`` queries and a session's
+    ``"key"`` with ``***``."""
 
     def filter(self, record: logging.LogRecord) -> bool:
         text = record.getMessage()
-        redacted = _SECRETS.sub(r"\1***", text)
+        redacted = _KEYS.sub(r"\1***", _SECRETS.sub(r"\1***", text))
         if redacted != text:
             record.msg, record.args = redacted, None
         return True

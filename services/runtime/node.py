@@ -375,6 +375,7 @@ class Node(ParametersMixin):
             describe=self._participant.describe,
             stats=self._participant.published_counts,
             on_publishers=self._participant.set_publishers,
+            on_key=self._app.accept_core_key,
             token=self.settings.token,
             quiet_s=self.settings.core_start_grace_s,
         )

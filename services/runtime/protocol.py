@@ -2,7 +2,8 @@
 
 One JSON object per text frame, told apart by ``op``. The node opens with ``register`` and
 sends ``update`` whenever its publications, subscriptions or services change, plus ``stats``
-once a second; the core answers ``registered`` (or ``rejected``) and pushes ``publishers`` for
+once a second; the core answers ``registered`` (with the key it forwards calls with, or
+``rejected``) and pushes ``publishers`` for
 every topic the node subscribes to, at once and whenever that list changes. The session's
 life is the node's life in the registry: when it drops, the node leaves the graph.
 """
@@ -93,6 +94,10 @@ class StatsFrame(_Frame):
 
 class RegisteredFrame(_Frame):
     op: Literal["registered"] = "registered"
+    # This registration's key: the core forwards the calls it admitted to the node with it (as
+    # a bearer token), so a node with a token of its own accepts what the core's fences let
+    # through (an instructor's call to a student's node). A secret: never logged.
+    key: str = ""
 
 
 class RejectedFrame(_Frame):

@@ -15,9 +15,9 @@ from services.runtime.parameter_service import is_parameter_service
 
 __all__ = ["SYSTEM_NODES", "ServiceGroup", "service_group"]
 
-SYSTEM_NODES = frozenset({"/skydeck_core", "/skydeck_launch", "/rosapi"})
-"""Skydeck's own nodes: the core, the launch's node (``skydeck node kill`` asks it) and rosapi,
-which the core answers for rosbridge clients (ROS's rosapi node). Named here, not imported from
+SYSTEM_NODES = frozenset({"/skydeck_core", "/skydeck_launch", "/rosapi", "/tf2_web_republisher"})
+"""Skydeck's own nodes: the core, the launch's node (``skydeck node kill`` asks it), and rosapi and
+tf2_web_republisher, which the core answers for rosbridge clients (ROS's nodes of those names). Named here, not imported from
 the core and the launch, which are layers above the runtime; a test pins them to theirs."""
 
 

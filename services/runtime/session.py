@@ -65,6 +65,7 @@ class CoreSession:
         describe: Callable[[], NodeDescription],
         stats: Callable[[], dict[str, int]],
         on_publishers: Callable[[str, list[PublisherAddress]], None],
+        on_key: Callable[[str], None] | None = None,
         token: str = "",
         quiet_s: float = 0.0,
     ) -> None:
@@ -73,6 +74,7 @@ class CoreSession:
         self._describe = describe
         self._stats = stats
         self._on_publishers = on_publishers
+        self._on_key = on_key  # the key the core forwards admitted calls with (RegisteredFrame)
         self._headers = {"Authorization": f"Bearer {token}"} if token else None
         self._changed = asyncio.Event()
         self.registered = asyncio.Event()
@@ -138,6 +140,8 @@ class CoreSession:
         reply = self._parse(await websocket.recv())
         if isinstance(reply, RejectedFrame):
             raise RegistrationRejected(reply.reason)
+        if isinstance(reply, RegisteredFrame) and self._on_key is not None:
+            self._on_key(reply.key)
         if isinstance(reply, PublishersFrame):  # cannot happen before "registered"; be lenient
             self._on_publishers(reply.topic, reply.publishers)
 

@@ -3,6 +3,8 @@
 Pure geometry with a caller-owned :class:`random.Random`, so ``--seed`` fixes the room. The
 obstacles keep clear of robot 1's corridor to the +x wall, of every robot start, of the
 person's loop, of the walls (a lane to follow them) and of each other (room to pass between).
+A class's robots (``skydeck class``) start on a grid clear of the person's loop
+(:func:`class_starts`).
 """
 
 from __future__ import annotations
@@ -10,9 +12,12 @@ from __future__ import annotations
 import bisect
 import math
 import random
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 from sim_server.robot.limits import (
+    CLASS_GRID_PITCHES_M,
+    CLASS_PERSON_CLEARANCE_M,
     CORRIDOR_HALF_WIDTH_M,
     LEG_RADIUS_M,
     LEG_SPACING_M,
@@ -26,7 +31,7 @@ from sim_server.robot.limits import (
     WALL_LANE_M,
 )
 
-__all__ = ["Obstacle", "PersonLoop", "place_obstacles"]
+__all__ = ["Obstacle", "PersonLoop", "class_starts", "place_obstacles"]
 
 _MAX_TRIES_PER_OBSTACLE = 500
 _MAX_ATTEMPTS = 20
@@ -88,7 +93,35 @@ class PersonLoop:
         return min(math.hypot(x - px, y - py) for px, py in self.points)
 
 
-def place_obstacles(rng: random.Random, count: int, loop: PersonLoop) -> list[Obstacle]:
+def class_starts(count: int, loop: PersonLoop) -> list[tuple[float, float]]:
+    """Where a class's ``count`` robots start: on the widest grid of CLASS_GRID_PITCHES_M (centred
+    in the room, a pitch's half from the walls at least) that has ``count`` points clear of the
+    person's walk, row by row from the front (+x). ValueError when none has room."""
+    for pitch in CLASS_GRID_PITCHES_M:
+        per_side = int((2.0 * ROOM_HALF_SIZE_M) / pitch)  # a half pitch to each wall at least
+        first = -(per_side - 1) * pitch / 2.0
+        cells = [round(first + i * pitch, 3) for i in range(per_side)]
+        free = [
+            (x, y)
+            for x in reversed(cells)
+            for y in reversed(cells)
+            if loop.distance_to(x, y) >= CLASS_PERSON_CLEARANCE_M
+        ]
+        if len(free) >= count:
+            return _spread(free, count)
+    raise ValueError(f"{count} robots do not fit in the room apart")
+
+
+def _spread(cells: list[tuple[float, float]], count: int) -> list[tuple[float, float]]:
+    """``count`` of ``cells`` (in order), evenly spaced along them: a small class spreads over
+    the whole grid rather than filling its first rows."""
+    step = len(cells) / count
+    return [cells[int(i * step)] for i in range(count)]
+
+
+def place_obstacles(
+    rng: random.Random, count: int, loop: PersonLoop, starts: Sequence[tuple[float, float]] = ROBOT_STARTS_M
+) -> list[Obstacle]:
     """Draw ``count`` box obstacles: uniform in the room's inner square, each drawn again until
     it keeps its distances (see the module's docstring); a set that gets stuck (no room left
     for the next box) is drawn again from the start.
@@ -96,13 +129,15 @@ def place_obstacles(rng: random.Random, count: int, loop: PersonLoop) -> list[Ob
     Raises ValueError when they cannot be placed (far more than the room holds).
     """
     for _attempt in range(_MAX_ATTEMPTS):
-        placed = _try_to_place(rng, count, loop)
+        placed = _try_to_place(rng, count, loop, starts)
         if placed is not None:
             return placed
     raise ValueError(f"cannot place {count} obstacles apart in the room; use fewer")
 
 
-def _try_to_place(rng: random.Random, count: int, loop: PersonLoop) -> list[Obstacle] | None:
+def _try_to_place(
+    rng: random.Random, count: int, loop: PersonLoop, starts: Sequence[tuple[float, float]]
+) -> list[Obstacle] | None:
     placed: list[Obstacle] = []
     inner = ROOM_HALF_SIZE_M - WALL_LANE_M
     robot_room = ROBOT_RADIUS_M + OBSTACLE_GAP_M
@@ -121,7 +156,7 @@ def _try_to_place(rng: random.Random, count: int, loop: PersonLoop) -> list[Obst
             r = candidate.radius
             if candidate.x + r > corridor_x and abs(candidate.y) - r < CORRIDOR_HALF_WIDTH_M:
                 continue
-            if any(math.hypot(candidate.x - sx, candidate.y - sy) < r + robot_room for sx, sy in ROBOT_STARTS_M):
+            if any(math.hypot(candidate.x - sx, candidate.y - sy) < r + robot_room for sx, sy in starts):
                 continue
             if loop.distance_to(candidate.x, candidate.y) < r + person_room:
                 continue

@@ -89,6 +89,13 @@ MAX_ROBOTS = 4
 ROBOT_STARTS_M = ((0.0, 0.0), (0.0, -1.5), (-1.5, 0.0), (-1.5, -1.5))
 """Where robot 1, 2, ... start, all facing +x; kept clear whatever the number of robots, so a
 seed builds the same room for one robot or four."""
+MAX_CLASS_ROBOTS = 40
+"""A class's room (``skydeck class``: one robot per student, named): its robots stand on a grid
+(:func:`sim_server.robot.layout.class_starts`), as far apart as their number allows."""
+CLASS_GRID_PITCHES_M = (2.0, 1.6, 1.3, 1.1, 1.0, 0.9, 0.8)
+"""The grid's spacings tried, widest first: the first that holds the class is used."""
+CLASS_PERSON_CLEARANCE_M = 0.7
+"""A class's start keeps this far from the person's walk (the legs and a robot pass between)."""
 
 # -- rates (sim time) -----------------------------------------------------------------------------
 PHYSICS_HZ = 120

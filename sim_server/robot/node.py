@@ -2,7 +2,8 @@
 
     skydeck run sim --world robot [--robots N] [--obstacles K] [--seed S] [--speed F|max]
 
-Per robot, under its namespace (none with one robot; ``/robot1``, ``/robot2``... with more):
+Per robot, under its namespace (none with one robot; ``/robot1``, ``/robot2``... with more; a
+class's ``/NAME`` per student, ``SKYDECK_SIM_STUDENTS=alice,bob`` as ``skydeck class`` sets it):
 follows ``cmd_vel`` (geometry_msgs/Twist, body frame; 0.5 s without one stops it), publishes
 ``odom`` (nav_msgs/Odometry, 30 Hz), ``bump`` (neato2_interfaces/Bump, 30 Hz) and ``scan``
 (sensor_msgs/LaserScan, 5 Hz). For everyone: ``/tf`` (odom -> base_link of each robot, 30 Hz),
@@ -104,7 +105,9 @@ class _RobotTopics:
 
 
 def _build_world(sim: RobotSettings) -> RobotWorld:
-    return RobotWorld(RobotWorldConfig(seed=sim.seed, robots=sim.robots, obstacles=sim.obstacles))
+    return RobotWorld(
+        RobotWorldConfig(seed=sim.seed, robots=sim.robots, obstacles=sim.obstacles, students=sim.student_names)
+    )
 
 
 class RobotSimNode(WorldNode[RobotSettings]):
@@ -122,7 +125,8 @@ class RobotSimNode(WorldNode[RobotSettings]):
         super().__init__(sim or RobotSettings(), settings, build)
         self.world: RobotWorld
         world = self.world
-        self.namespaces = robot_namespaces(world.robot_count)
+        students = world.config.students
+        self.namespaces = [f"/{name}" for name in students] if students else robot_namespaces(world.robot_count)
         self.robots = [_RobotTopics(self, i, ns) for i, ns in enumerate(self.namespaces)]
         self.tf_publisher = self.create_publisher(TFMessage, "/tf", 100)
         self.tf_static_publisher = self.create_publisher(TFMessage, "/tf_static", 1, latched=True)
@@ -178,7 +182,11 @@ class RobotSimNode(WorldNode[RobotSettings]):
             bump = world.bump(robot.index)
             robot.bump.publish_built(partial(_bump_message, bump))
             if scanning:
-                robot.scan.publish_built(partial(_laser_scan, stamp, robot.laser_frame, world.scan(robot.index)))
+                # Rays are cast only for a scan someone reads: a class's idle robots cost none
+                # (docs/performance.md). An unread scan asked for later (GET) is cast then, from
+                # this tick's pose.
+                cast = partial(world.scan_from, *world.robot_pose(robot.index))
+                robot.scan.publish_built(partial(_laser_scan, stamp, robot.laser_frame, cast))
         self.tf_publisher.publish_built(lambda: TFMessage.model_validate({"transforms": transforms}))
         if steps % TRUTH_EVERY_STEPS == 0:
             header = {"stamp": stamp, "frame_id": "map"}
@@ -276,7 +284,7 @@ def _bump_message(bump: WorldBump) -> Bump:
     )
 
 
-def _laser_scan(stamp: dict[str, int], frame_id: str, ranges: list[float]) -> LaserScan:
+def _laser_scan(stamp: dict[str, int], frame_id: str, cast: Callable[[], list[float]]) -> LaserScan:
     return LaserScan.model_validate({
         "header": {"stamp": stamp, "frame_id": frame_id},
         "angle_min": 0.0,
@@ -286,5 +294,5 @@ def _laser_scan(stamp: dict[str, int], frame_id: str, ranges: list[float]) -> La
         "scan_time": _SCAN_PERIOD_S,
         "range_min": RANGE_MIN_M,
         "range_max": RANGE_MAX_M,
-        "ranges": ranges,
+        "ranges": cast(),
     })  # fmt: skip

@@ -38,12 +38,13 @@ from sim_server.robot.bodies import (
     person_pivot,
 )
 from sim_server.robot.drive import WheelOdometry, check_cmd_vel, wheel_speeds
-from sim_server.robot.layout import Obstacle, PersonLoop, place_obstacles
+from sim_server.robot.layout import Obstacle, PersonLoop, class_starts, place_obstacles
 from sim_server.robot.limits import (
     CENTRE_OF_MASS_X_M,
     CMD_VEL_TIMEOUT_S,
     CONTROL_EVERY_STEPS,
     DEFAULT_OBSTACLES,
+    MAX_CLASS_ROBOTS,
     MAX_OBSTACLES,
     MAX_ROBOTS,
     MAX_WHEEL_FORCE_N,
@@ -75,9 +76,15 @@ class RobotWorldConfig:
     seed: int | None = None
     robots: int = 1
     obstacles: int = DEFAULT_OBSTACLES
+    students: tuple[str, ...] = ()
+    """A class's room: one robot per student, on a grid (``robots`` is then their number)."""
 
     def __post_init__(self) -> None:
-        if not 1 <= self.robots <= MAX_ROBOTS:
+        if self.students:
+            if not len(self.students) <= MAX_CLASS_ROBOTS:
+                raise ValueError(f"{len(self.students)} students is more than a room holds ({MAX_CLASS_ROBOTS})")
+            object.__setattr__(self, "robots", len(self.students))
+        elif not 1 <= self.robots <= MAX_ROBOTS:
             raise ValueError(f"robots={self.robots} is outside [1, {MAX_ROBOTS}]")
         if not 0 <= self.obstacles <= MAX_OBSTACLES:
             raise ValueError(f"obstacles={self.obstacles} is outside [0, {MAX_OBSTACLES}]")
@@ -121,8 +128,12 @@ class RobotWorld(BulletWorld):
         seed = self.config.seed
         self.seed: int = draw_seed() if seed is None else seed
         self.loop = PersonLoop()
+        # Clear of every start a room may have (all four of a small room's: a seed builds the
+        # same room for one robot or four), a class's robots on their grid.
+        room_starts = class_starts(self.config.robots, self.loop) if self.config.students else ROBOT_STARTS_M
+        self.starts = room_starts[: self.config.robots]
         self.obstacles: list[Obstacle] = place_obstacles(
-            random.Random(self.seed), self.config.obstacles, self.loop
+            random.Random(self.seed), self.config.obstacles, self.loop, room_starts
         )
         self._laser = Laser(self._client)
         self._robots: list[_Robot] = []
@@ -246,6 +257,11 @@ class RobotWorld(BulletWorld):
         """Robot ``robot``'s laser scan now: SCAN_BEAMS ranges, ranges[0] straight ahead."""
         return self._laser.scan(*self.robot_pose(robot))
 
+    def scan_from(self, x: float, y: float, yaw: float) -> list[float]:
+        """The scan a laser at base_link pose (x, y, yaw) sees in the room as it is now."""
+        self._check_open()
+        return self._laser.scan(x, y, yaw)
+
     def bump(self, robot: int) -> Bump:
         """Which parts of robot ``robot``'s bumper touch something other than the floor now."""
         self._check_open()
@@ -286,7 +302,7 @@ class RobotWorld(BulletWorld):
         for obstacle in self.obstacles:
             create_obstacle(client, obstacle)
         self._robots = []
-        for sx, sy in ROBOT_STARTS_M[: self.config.robots]:
+        for sx, sy in self.starts:
             body = create_neato(client, sx, sy, 0.0)
             _drive_wheels(client, body, (0.0, 0.0), (0.0, 0.0))
             self._robots.append(_Robot(body=body, start=(sx, sy, 0.0)))

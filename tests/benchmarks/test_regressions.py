@@ -12,9 +12,17 @@ import time
 
 from websockets.asyncio.server import ServerConnection, serve
 
+from services.runtime.edge.encoding import Encoding
 from services.runtime.edge.links import PublisherLink
 from services.runtime.subscription import Subscription
 from shared_models.std_msgs import Int32
+
+
+def _deliver(subscription: Subscription, frame: str | bytes) -> int:
+    """As a node wires its links: one message per frame here (this publisher sends no batches),
+    and the count of messages the frame held."""
+    subscription.receive(Int32.model_validate_json(frame))
+    return 1
 
 
 async def _burst_into(subscription: Subscription, burst: int, received: list[int]) -> None:
@@ -31,8 +39,9 @@ async def _burst_into(subscription: Subscription, burst: int, received: list[int
         link = PublisherLink(
             f"http://127.0.0.1:{port}",
             "/burst",
-            lambda frame: subscription.receive(Int32.model_validate_json(frame)),  # as a node wires its links
+            lambda frame: _deliver(subscription, frame),
             queue_size=subscription.queue_size,
+            encoding=Encoding.JSON,
             max_message_bytes=1 << 20,
             ping_interval_s=5.0,
             ping_timeout_s=5.0,

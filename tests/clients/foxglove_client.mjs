@@ -122,8 +122,62 @@ async function parameters() {
   emit({ statuses: events.filter((e) => e.name === "status").map((e) => e.value) });
 }
 
+// A request's answer, or the status it got: the server answers ops in order, so a barrier
+// (getParameters with an id of its own) after the request says "no status came for it".
+let barriers = 0;
+async function statusOrNothing(text) {
+  const id = `barrier-${++barriers}`;
+  client.getParameters(["/none.none"], id);
+  await next("parameterValues", (p) => p.id === id);
+  const status = events.find((e) => e.name === "status" && e.value.message.includes(text));
+  return status ? status.value.message : null;
+}
+
+async function callIfShown(name, request) {
+  if (!services.has(name)) return { hidden: true };
+  return callService(name, request);
+}
+
+// Each verb the fences guard, on the names of the namespace given, as the URL's token may do it.
+async function fences() {
+  const target = process.argv[5];
+  await next("serverInfo");
+  await next("advertise");
+  await sleep(200); // the first advertiseServices follows the first advertise at once
+  const scan = `/${target}/scan`;
+  if (channels.has(scan)) {
+    const sub = client.subscribe(channels.get(scan).id);
+    const answer = await Promise.race([
+      next("message", (m) => m.subscriptionId === sub).then((m) => ({ message: JSON.parse(text(m.data)) })),
+      next("status", (s) => s.message.includes(scan)).then((s) => ({ status: s.message })),
+    ]);
+    emit({ verb: "read", ...answer });
+  } else {
+    emit({ verb: "read", hidden: true, shared: channels.has("/clock") });
+  }
+  const topic = `/${target}/cmd_vel`;
+  const cmdVel = client.advertise({ topic, encoding: "json", schemaName: "geometry_msgs/msg/Twist" });
+  const refused = await statusOrNothing(topic);
+  if (!refused) {
+    await sleep(1000); // subscribers link to the new publisher in a moment, as with ROS
+    client.sendMessage(cmdVel, encoder.encode(JSON.stringify({ linear: { x: 0.75, y: 0, z: 0 }, angular: { x: 0, y: 0, z: 0 } })));
+  }
+  emit({ verb: "publish", status: refused });
+  emit({ verb: "call", ...(await callIfShown(`/${target}/ping`, {})) });
+  const gain = `/${target}/driver.gain`;
+  client.setParameters([{ name: gain, value: 2.5 }], "gain");
+  const set = await Promise.race([
+    next("parameterValues", (p) => p.id === "gain").then((p) => ({ values: p.parameters })),
+    next("status", (s) => s.message.includes(`/${target}/driver`)).then((s) => ({ status: s.message })),
+  ]);
+  emit({ verb: "set_parameter", ...set });
+  emit({ verb: "kill_node", ...(await callIfShown("/skydeck_launch/kill_node", { node: `/${target}/driver` })) });
+  emit({ verb: "reset_world", ...(await callIfShown("/simulator/reset", {})) });
+  emit({ after: await statusOrNothing("nothing at all") }); // the connection carries on
+}
+
 try {
-  await { tour, parameters }[scenario]();
+  await { tour, parameters, fences }[scenario]();
   client.close();
   process.exit(0);
 } catch (error) {

@@ -1,6 +1,6 @@
 """roslibpy (from PyPI) driving Skydeck's rosbridge endpoint: one scenario per run.
 
-    python roslibpy_client.py URL SCENARIO [TOKEN]
+    python roslibpy_client.py URL SCENARIO [TOKEN] [NAMESPACE]
 
 Prints one JSON object per line for the test to check; ``hosted`` waits for a line on stdin
 before it ends (the test calls the hosted service meanwhile). Exit 0 when the scenario ran.
@@ -161,6 +161,70 @@ def workshop(ros: roslibpy.Ros) -> None:
     emit(topics=ros.get_topics())
 
 
+class Statuses:
+    """The ``status`` ops the server sends. roslibpy has no handler for them (it raises on one):
+    this scenario adds one, as roslibjs has, to see the fences' refusals."""
+
+    def __init__(self, ros: roslibpy.Ros) -> None:
+        self.seen: list[dict] = []
+        self._arrived = threading.Condition()
+        ros.factory.on_ready(lambda proto: proto._message_handlers.__setitem__("status", self._add))
+        ros.send_on_ready(roslibpy.Message({"op": "set_level", "level": "info"}))  # a status for every advertise
+
+    def _add(self, message: dict) -> None:
+        with self._arrived:
+            self.seen.append(dict(message))
+            self._arrived.notify_all()
+
+    def about(self, text: str, timeout_s: float = 10.0) -> dict:
+        """The first status whose message names ``text`` (waiting for it)."""
+        with self._arrived:
+            if not self._arrived.wait_for(lambda: any(text in s["msg"] for s in self.seen), timeout_s):
+                raise SystemExit(f"no status about {text} within {timeout_s} s: {self.seen}")
+            return next(s for s in self.seen if text in s["msg"])
+
+
+def _call(ros: roslibpy.Ros, name: str, type_name: str, request: dict) -> dict:
+    try:
+        return {"answer": dict(roslibpy.Service(ros, name, type_name).call(roslibpy.ServiceRequest(request), timeout=10))}
+    except Exception as error:  # roslibpy's ServiceException carries the server's reason
+        return {"refused": str(error)}
+
+
+def fences(ros: roslibpy.Ros) -> None:
+    """Each verb the fences guard, on the names of the namespace given (argv[4]), as the token
+    given (argv[3], or none) may do it: one line per verb, what the server answered."""
+    target = sys.argv[4]
+    statuses = Statuses(ros)
+    scan = f"/{target}/scan"
+    got: list[dict] = []
+    received = threading.Event()
+    topic = roslibpy.Topic(ros, scan, "std_msgs/msg/String")
+    topic.subscribe(lambda message: (got.append(message), received.set()))
+    said = statuses.about(f"{scan}")  # subscribed (info) or refused (error)
+    if said["level"] == "info":
+        received.wait(10)
+    emit(verb="read", level=said["level"], status=said["msg"], message=got[0] if got else None)
+    cmd_vel = roslibpy.Topic(ros, f"/{target}/cmd_vel", "geometry_msgs/msg/Twist")
+    cmd_vel.advertise()
+    said = statuses.about(f"/{target}/cmd_vel")
+    if said["level"] == "info":
+        time.sleep(1.0)  # as with ROS: subscribers connect to a new publisher in a moment
+        cmd_vel.publish(roslibpy.Message({"linear": {"x": 0.25, "y": 0.0, "z": 0.0}}))
+    emit(verb="publish", level=said["level"], status=said["msg"])
+    emit(verb="call", **_call(ros, f"/{target}/ping", "std_srvs/srv/Trigger", {}))
+    roslibpy.Service(ros, f"/{target}/hosted", "std_srvs/srv/Trigger").advertise(lambda request, response: True)
+    said = statuses.about(f"/{target}/hosted")
+    emit(verb="serve", level=said["level"], status=said["msg"])
+    emit(verb="set_parameter", **_call(
+        ros, "/rosapi/set_param", "rosapi_msgs/srv/SetParam", {"name": f"/{target}/driver:gain", "value": "2.5"}
+    ))  # fmt: skip
+    emit(verb="kill_node", **_call(ros, "/skydeck_launch/kill_node", "skydeck_launch/srv/KillNode", {"node": f"/{target}/driver"}))
+    emit(verb="reset_world", **_call(ros, "/simulator/reset", "std_srvs/srv/Trigger", {}))
+    # The connection carries on after every refusal: it still answers (what it may not do, too).
+    emit(after=_call(ros, "/rosapi/topic_type", "rosapi_msgs/srv/TopicType", {"topic": "/clock"}))
+
+
 def tf(ros: roslibpy.Ros) -> None:
     client = TFClient(ros, fixed_frame="/world", angular_threshold=0.01, translation_threshold=0.01, rate=20.0)
     carrots: list[dict] = []
@@ -219,13 +283,13 @@ def echo(ros: roslibpy.Ros) -> None:
 
 def main() -> None:
     url, scenario = sys.argv[1], sys.argv[2]
-    headers = {"Authorization": f"Bearer {sys.argv[3]}"} if len(sys.argv) > 3 else None
+    headers = {"Authorization": f"Bearer {sys.argv[3]}"} if len(sys.argv) > 3 and sys.argv[3] else None
     ros = roslibpy.Ros(url, headers=headers)
     ros.run(timeout=15)
     emit(connected=ros.is_connected)
     try:
         scenarios = {"tour": tour, "hosted": hosted, "rosapi": rosapi, "stuck": stuck, "workshop": workshop,
-                     "tf": tf, "params": params, "echo": echo}  # fmt: skip
+                     "fences": fences, "tf": tf, "params": params, "echo": echo}  # fmt: skip
         scenarios[scenario](ros)
     finally:
         ros.terminate()

@@ -14,8 +14,8 @@ import pytest
 from websockets.exceptions import ConnectionClosed
 from websockets.sync.client import connect
 
-from services.core.core_node import CORE_NODE
 from services.runtime.edge.links import stream_url
+from services.runtime.service_groups import SYSTEM_NODES
 from services.runtime.wire import MAX_MESSAGE_BYTES
 from tests.bad_frames import OversizedFrame, bad_payloads, close_of
 from tests.reliability.conftest import Workshop
@@ -54,9 +54,10 @@ def test_every_service_refuses_bad_bodies_and_keeps_serving(workshop: Workshop) 
 
 def test_every_writable_topic_refuses_bad_frames_and_keeps_serving(workshop: Workshop) -> None:
     graph = workshop.graph()
-    # The workshop's nodes take frames on topics they subscribe to; the core node (reading for
-    # its clients) publishes only what its clients publish, so it is not one of them.
-    nodes = {name: url for name, url in workshop.node_urls.items() if name != CORE_NODE}
+    # The workshop's nodes take frames on topics they subscribe to; the core's own nodes (the core
+    # node reading for its clients, the guests it answers for rosbridge clients: rosapi,
+    # tf2_web_republisher) publish only what their clients publish, so they are not among them.
+    nodes = {name: url for name, url in workshop.node_urls.items() if name not in SYSTEM_NODES}
     writable = [t for t in graph["topics"] if any(s in nodes for s in t["subscribers"])]
     assert {t["name"] for t in writable} >= {"/drone/setpoint", "/drone/cmd_vel", "/drone/pose", "/perception/boxes"}
     checked = 0

@@ -138,11 +138,13 @@ def _skydeck(system: System, *args: str, timeout_s: float = 60) -> subprocess.Co
 
 def test_cli_lists_and_describes_actions(core: System, ros2_server: BackgroundProcess, ros1_server: BackgroundProcess) -> None:
     listed = _skydeck(core, "action", "list")
+    every = _skydeck(core, "action", "list", "-a")
     typed = _skydeck(core, "action", "list", "-t")
     info = _skydeck(core, "action", "info", "fibonacci")
     unknown = _skydeck(core, "action", "info", "/nothing_here")
     assert listed.stdout.splitlines() == ["/fibonacci"]  # ROS 1's actionlib topics are no ROS 2 action
     assert typed.stdout.splitlines() == ["/fibonacci [example_interfaces/action/Fibonacci]"]
+    assert every.stdout.splitlines() == ["/fibonacci", "/tf2_web_republisher"]  # the core's, for roslibjs's TFClient
     assert info.stdout.splitlines() == [
         "Action: /fibonacci", "Action clients: 0", "Action servers: 1", "    /fibonacci_action_server"]  # fmt: skip
     assert unknown.returncode == 1 and unknown.stderr == "skydeck: error: unknown action /nothing_here: see `skydeck action list`\n"

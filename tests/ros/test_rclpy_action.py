@@ -75,7 +75,11 @@ def test_a_goal_from_accept_to_result_with_its_handles(rclpy: Any) -> None:
     assert handle.status == GoalStatusCode.SUCCEEDED and not seen["handle"].is_active
     # Callbacks ran in the executors' threads, never on the bridge's loop.
     assert all("executor" in name for name in [seen["thread"], *feedback_threads, *done_threads]), (seen, feedback_threads)
-    assert get_action_names_and_types(client_node) == [("/fibonacci", ["example_interfaces/action/Fibonacci"])]
+    # rclpy lists every action of the graph, the core's tf2_web_republisher (for roslibjs) too
+    assert get_action_names_and_types(client_node) == [
+        ("/fibonacci", ["example_interfaces/action/Fibonacci"]),
+        ("/tf2_web_republisher", ["tf2_web_republisher_interfaces/action/TFSubscription"]),
+    ]
 
 
 def test_wrong_answers_and_errors_in_callbacks_refuse_or_abort(rclpy: Any, caplog: pytest.LogCaptureFixture) -> None:

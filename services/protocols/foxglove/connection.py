@@ -20,6 +20,7 @@ from typing import Any
 
 from starlette.websockets import WebSocket
 
+from services.access import AccessRefused, Forbidden, Pass, Verb, service_verb
 from services.core.access import CoreAccess
 from services.core.gateway_topic import declared_type
 from services.core.service_calls import ServiceCallFailed
@@ -167,15 +168,16 @@ class Connection:
         """Advertise what appeared since the last call and unadvertise what went away."""
         graph = self._shared.graph
         # The state changes before the first await: a call running meanwhile sees it.
+        visitor = self._session.visitor  # a client is not shown what its token may never use
         removed = [cid for cid in self._channels if cid not in graph.channels]
-        added = [cid for cid in graph.channels if cid not in self._channels]
+        added = [cid for cid in graph.channels if cid not in self._channels and _shown(visitor, Verb.READ, graph.channels[cid][0])]
         for cid in removed:
             topic, _ = self._channels.pop(cid)
             if topic in self._subscribed_topics:
                 self._drop_subscription(self._subscribed_topics[topic])
         self._channels.update({cid: graph.channels[cid] for cid in added})
         gone = [sid for sid in self._services if sid not in graph.services]
-        new = [sid for sid in graph.services if sid not in self._services]
+        new = [sid for sid in graph.services if sid not in self._services and _shown(visitor, *service_verb(graph.services[sid][0], b""))]
         for sid in gone:
             del self._services[sid]
         self._services.update({sid: graph.services[sid][:2] for sid in new})
@@ -205,6 +207,7 @@ class Connection:
             if item.channelId not in self._channels:
                 raise Refused(f"no channel {item.channelId}: subscribe to a channel the server advertised")
             topic = self._channels[item.channelId][0]
+            self._session.visitor.check(Verb.READ, topic)  # before anything of the op is kept
             if topic in self._subscribed_topics:
                 raise Refused(
                     f"channel {item.channelId} ({topic}) is subscribed already (subscription {self._subscribed_topics[topic]})"
@@ -237,8 +240,10 @@ class Connection:
         reading = self._session.readings.get(topic)
         if not wanted:
             self._session.stop_reading(topic)
-        elif reading is None:
-            self._session.start_reading(topic, queue=DEFAULT_QUEUE, encode=self._encoder(topic))
+        elif reading is None:  # fenced when the client subscribes; the time and parameters are ours
+            self._session.start_reading(
+                topic, queue=DEFAULT_QUEUE, encode=self._encoder(topic), for_client=topic in self._subscribed_topics
+            )
 
     def _encoder(self, topic: str) -> Callable[[str], Sequence[dict[str, Any]]]:
         payloads = self._shared.payloads
@@ -263,7 +268,6 @@ class Connection:
     # -- client publishing ------------------------------------------------------------------------
 
     def _advertise(self, op: Advertise) -> None:
-        self._session.check_may_write()
         for item in op.channels:
             if item.encoding != "json":
                 raise Refused(f"channel {item.id}: encoding {item.encoding!r} is not supported: use json")
@@ -273,8 +277,8 @@ class Connection:
                 raise Refused(f"channel {item.id}: {error}") from None
             try:
                 self._session.declare(topic, declared_type(item.schemaName))
-            except FrameRejected as error:
-                raise Refused(f"channel {item.id} ({topic}): {error.reason}") from None
+            except (FrameRejected, AccessRefused) as error:
+                raise Refused(f"channel {item.id} ({topic}): {error}") from None
             self._client_channels[item.id] = topic
 
     def _unadvertise(self, op: Unadvertise) -> None:
@@ -293,8 +297,8 @@ class Connection:
             raise Refused(f"channel {cid} ({topic}): the payload is not JSON text: {error}") from None
         try:
             self._session.publish(topic, text)
-        except FrameRejected as error:
-            raise Refused(f"channel {cid} ({topic}): {error.reason}") from None
+        except (FrameRejected, AccessRefused) as error:
+            raise Refused(f"channel {cid} ({topic}): {error}") from None
 
     # -- services ---------------------------------------------------------------------------------
 
@@ -334,6 +338,13 @@ class Connection:
         self._graph_sent = self._shared.graph.graph_state()
         if update is not None:
             await self._send(update)
+
+
+def _shown(visitor: Pass, verb: Verb, name: str) -> bool:
+    """Whether a client is shown a channel or service: unless its token may never use it (a
+    student's, outside their fences); without a token, it is shown (a token would open it), and
+    so is a service whose fence depends on the request (the node a kill_node names: ``name`` "")."""
+    return not name or not isinstance(visitor.refusal(verb, name), Forbidden)
 
 
 def _clock_ns(frame: str, previous: int) -> int:

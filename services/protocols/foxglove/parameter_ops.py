@@ -1,7 +1,9 @@
 """A Foxglove connection's parameter ops: get, set, and updates as ``/parameter_events`` tells them.
 
 Parameters are named with their node (``/control.max_speed``) and reach each node's own ROS 2
-parameter services through :mod:`services.protocols.parameters`, with the connection's token.
+parameter services through :mod:`services.protocols.parameters`, with the connection's token
+(so fenced as its calls are: a student reads and sets the parameters of their own nodes, and
+is sent the updates of those alone).
 """
 
 from __future__ import annotations
@@ -10,6 +12,7 @@ import json
 from collections.abc import Awaitable, Callable
 from typing import Any
 
+from services.access import Verb
 from services.protocols.foxglove.ops import ERROR, GetParameters, ParameterUpdates, SetParameters
 from services.protocols.ops import Refused
 from services.protocols.parameters import (
@@ -17,6 +20,7 @@ from services.protocols.parameters import (
     Parameters,
     ParameterValueJson,
     event_values,
+    split_name,
 )
 from services.protocols.session import ClientSession
 
@@ -52,7 +56,6 @@ class ParameterOps:
         await self._send_values(values, op.id)
 
     async def set(self, op: SetParameters) -> None:
-        self._session.check_may_write()
         items = [ParameterValueJson(item.name, item.value, item.type) for item in op.parameters]
         try:
             results = await self._parameters.set(items)
@@ -89,7 +92,10 @@ class ParameterOps:
             values = event_values(frame)
         except ValueError:
             return []
-        wanted = [v for v in values if self._all or v.name in self._names]
+        visitor = self._session.visitor
+        wanted = [
+            v for v in values if (self._all or v.name in self._names) and visitor.allows(Verb.CALL, _get_service(v.name))
+        ]
         if not wanted:
             return []
         text = json.dumps({"op": "parameterValues", "parameters": [_parameter(v) for v in wanted]})
@@ -103,6 +109,12 @@ class ParameterOps:
 
     async def _status(self, text: str) -> None:
         await self._send({"op": "status", "level": ERROR, "message": text})
+
+
+def _get_service(name: str) -> str:
+    """The service that reads the parameter ``name``: a client sees the updates of the
+    parameters it may read (the fences' rule for them)."""
+    return split_name(name)[0] + "/get_parameters"
 
 
 def _parameter(value: ParameterValueJson) -> dict[str, Any]:

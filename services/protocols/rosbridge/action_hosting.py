@@ -27,6 +27,7 @@ from typing import Any
 
 from pydantic import Field, ValidationError
 
+from services.access import Verb
 from services.protocols.ops import Refused, describe_error
 from services.protocols.rosbridge.core_host import CoreHost
 from services.protocols.rosbridge.frames import Status
@@ -154,8 +155,9 @@ class HostedActions:
         self._actions: dict[str, _HostedAction] = {}
 
     async def advertise(self, op: AdvertiseAction) -> None:
-        self._session.check_may_write()
         name = resolve_name(op.action)
+        # Serving an action is serving its services (under its name): a student's, under /NAME.
+        self._session.visitor.check(Verb.SERVE, name)
         action_type = get_interface(op.type)
         if not (isinstance(action_type, type) and issubclass(action_type, ActionType)):
             raise Refused(f"{op.type} is not an action type (example_interfaces/action/Fibonacci is one)")

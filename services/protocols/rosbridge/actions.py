@@ -28,6 +28,7 @@ from typing import Any
 
 from pydantic import Field, ValidationError
 
+from services.access import Verb
 from services.core.service_calls import ServiceCallFailed
 from services.protocols.ops import Refused
 from services.protocols.rosbridge.frames import Replies
@@ -84,6 +85,9 @@ class CoreTransport:
         return srv_type.Response.model_validate_json(reply.body)
 
     def subscribe(self, topic: str, msg_type: type[Message], callback: Callable[[Any], None]) -> None:
+        # Fenced as any reading (a class's student: their own actions' feedback and status only);
+        # refused, the goal's action_result says why.
+        self._session.visitor.check(Verb.READ, topic)
         tap = RawSubscription(topic, msg_type, lambda frame: callback(msg_type.model_validate_json(frame)), _TAP_DEPTH)
         self._session.access.core.start_reading(topic, tap)
         self._session.guest.reads(topic, msg_type.__ros_type__)

@@ -17,8 +17,14 @@ subscriptions are such a node's): one roslibpy script may publish and listen on 
 A bad frame gets a ``status`` (level ``error``, the op's ``id``) and nothing else happens;
 ``set_level`` asks for ``warning`` and ``info`` statuses too, or ``none``. Statuses are replies
 to a client's own ops, never sent otherwise. A client that stops reading is closed with 4001
-(see :mod:`services.protocols.session`). ``auth`` (:mod:`.auth`) unlocks writing on a connection
-opened without the token.
+(see :mod:`services.protocols.session`). ``auth`` (:mod:`.auth`) makes the connection act as a
+token's subject: the process token (or rosauth's MAC made with it), or a class token.
+
+Every op is fenced for the connection's token (:mod:`services.access`): ``subscribe``,
+``advertise``, ``publish``, ``advertise_service`` and ``advertise_action`` refused get a
+``status`` error, a refused ``call_service`` its ``service_response`` with ``result: false``, a
+refused ``send_action_goal`` its ``action_result``; a student's connection that publishes over
+their rate is closed with 4002.
 """
 
 from __future__ import annotations
@@ -188,11 +194,12 @@ class _Connection:
         self._level = _LEVELS.index(op.level)
 
     async def _auth(self, op: Auth) -> None:
-        token = self._settings.token
-        if not authenticates(op, token):
-            raise Refused("auth: the mac is not this core's token (SKYDECK_TOKEN), nor rosauth's MAC made with it in time")
-        self._session.token = token
-        await self._status("info", "authenticated: this connection may publish and call services", op.id)
+        process = self._settings.token
+        # rosauth's MAC proves the process token; anything else is taken as a token itself (the
+        # process token, or a class token), and refused if nobody has it.
+        token = process if process and authenticates(op, process) else op.mac
+        self._session.authenticate(token)
+        await self._status("info", f"authenticated as {self._session.visitor.subject}", op.id)
 
     async def _fragment(self, op: Fragment) -> None:
         whole = self._fragments.add(op)

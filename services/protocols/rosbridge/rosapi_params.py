@@ -12,6 +12,11 @@ server, relative names read from ``/`` as rosapi's node reads them. So roslibjs'
 - ``set_param``: the value as JSON text; ``delete_param`` (a ROS 1 name: a ROS 2 parameter is its
   node's, as ROS 2's rosapi cannot undeclare another node's either), ``has_param``,
   ``search_param`` (rospy's, from ``/``), ``get_param_names`` (ROS 1's leaves, then each node's).
+
+In a class, each is done with the rights of whoever called rosapi (:data:`CALLER`), as the core's
+own routes do them: a node's parameters through the fenced call path, a ROS 1 name read
+(``READ``) or written (``SET_PARAMETER``) only where the caller's token may (a student: under
+their namespace); a refusal is the response's ``reason``.
 """
 
 from __future__ import annotations
@@ -19,7 +24,9 @@ from __future__ import annotations
 import json
 from typing import Any
 
+from services.access import AccessRefused, Verb
 from services.core.access import CoreAccess
+from services.core.service_calls import CALLER
 from services.protocols.parameters import ParameterError, Parameters, ParameterValueJson, split_name
 from shared_models import rosapi_msgs as rosapi
 
@@ -54,7 +61,7 @@ class RosapiParams:
     def __init__(self, access: CoreAccess) -> None:
         self._tree = access.rosparam
         self._nodes = Parameters(
-            access.registry, lambda service, body: access.calls.call(service, body, token=access.settings.token)
+            access.registry, lambda service, body: access.calls.call(service, body, caller=CALLER.get())
         )
 
     async def get_param(self, request: rosapi.GetParamRequest) -> rosapi.GetParamResponse:
@@ -68,8 +75,9 @@ class RosapiParams:
                     return rosapi.GetParamResponse(value=unset, reason=f"{name} is not set")
                 value = values[0].value
             else:
+                _check(Verb.READ, _ros1_name(name))
                 value = self._tree.get(_ros1_name(name))
-        except (ParameterError, ValueError) as error:
+        except (ParameterError, ValueError, AccessRefused) as error:
             return rosapi.GetParamResponse(value=unset, reason=str(error))
         except KeyError:
             return rosapi.GetParamResponse(value=unset, reason=f"{_ros1_name(name)} is not set")
@@ -82,10 +90,11 @@ class RosapiParams:
             return rosapi.SetParamResponse(reason=f"the value must be JSON text, got {request.value!r}")
         try:
             if not _is_node_parameter(request.name):
+                _check(Verb.SET_PARAMETER, _ros1_name(request.name))
                 self._tree.set(_ros1_name(request.name), value)
                 return rosapi.SetParamResponse(successful=True)
             (result,) = await self._nodes.set([ParameterValueJson(request.name, value)])
-        except (ParameterError, ValueError) as error:
+        except (ParameterError, ValueError, AccessRefused) as error:
             return rosapi.SetParamResponse(reason=str(error))
         return rosapi.SetParamResponse(successful=result[1], reason=result[2])
 
@@ -96,8 +105,9 @@ class RosapiParams:
                 reason=f"{name} is a parameter of its node: a node's parameters cannot be deleted from outside it (set it instead)"
             )
         try:
+            _check(Verb.SET_PARAMETER, _ros1_name(name))
             self._tree.delete(_ros1_name(name))
-        except ValueError as error:
+        except (ValueError, AccessRefused) as error:
             return rosapi.DeleteParamResponse(reason=str(error))
         except KeyError:
             return rosapi.DeleteParamResponse(reason=f"{_ros1_name(name)} is not set")
@@ -128,6 +138,11 @@ class RosapiParams:
         ros1 = sorted(_leaves("", self._tree.get("/")))
         nodes = [name.replace(".", ":", 1) for name in await self._nodes.names()]
         return rosapi.GetParamNamesResponse(names=ros1 + nodes)
+
+
+def _check(verb: Verb, name: str) -> None:
+    """AccessRefused unless rosapi's caller may ``verb`` the ROS 1 parameter ``name``."""
+    CALLER.get().check(verb, name)
 
 
 def _leaves(prefix: str, tree: Any) -> list[str]:

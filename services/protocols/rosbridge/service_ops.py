@@ -25,6 +25,7 @@ from typing import Any
 
 from pydantic import ValidationError
 
+from services.access import Verb
 from services.protocols.ops import Refused, describe_error
 from services.protocols.rosbridge.frames import Replies, Status
 from services.protocols.rosbridge.ops import (
@@ -110,8 +111,8 @@ class ConnectionServices:
     # -- hosting --------------------------------------------------------------------------------
 
     async def advertise_service(self, op: AdvertiseService) -> None:
-        self._session.check_may_write()
         name = resolve_name(op.service)
+        self._session.visitor.check(Verb.SERVE, name)
         srv = get_interface(op.type)
         if not (isinstance(srv, type) and issubclass(srv, ServiceType)):
             raise Refused(f"{op.type} is a message type, not a service type")

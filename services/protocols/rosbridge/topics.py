@@ -25,6 +25,7 @@ from functools import cache
 from typing import Any
 
 import services.protocols.rosbridge.clock as clock
+from services.access import Verb
 from services.core.gateway_topic import declared_type
 from services.protocols.ops import Refused
 from services.protocols.rosbridge.frames import (
@@ -83,6 +84,7 @@ class ConnectionTopics:
 
     async def subscribe(self, op: Subscribe) -> None:
         name = resolve_name(op.topic)
+        self._session.visitor.check(Verb.READ, name)  # before anything of the op is kept
         known = self._session.access.registry.topic_type(name)
         if op.type:
             declared = declared_type(op.type)
@@ -168,7 +170,6 @@ class ConnectionTopics:
     async def publish(self, op: Publish) -> None:
         name = resolve_name(op.topic)
         try:
-            self._session.check_may_write()
             view = self._session.publication(name) or self._session.declare(name, None, latched=op.latch)
             msg = op.msg
             cls = view.message_type()

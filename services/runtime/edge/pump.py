@@ -79,7 +79,7 @@ def _messages(frame: Frame) -> Sequence[ASGIMessage]:
 
 
 async def _write_frames(websocket: WebSocket, outbox: Outbox, options: StreamOptions, initial_frame: Frame | None) -> None:
-    await write_outbox(websocket.send, outbox, rate_hz=options.rate_hz, initial_frame=initial_frame)
+    await write_outbox(websocket.send, outbox, rate_hz=options.rate_hz, spaced=False, initial_frame=initial_frame)
 
 
 async def write_outbox(
@@ -88,6 +88,7 @@ async def write_outbox(
     *,
     rate_hz: float | None = None,
     paced_queue: bool = False,
+    spaced: bool = True,
     initial_frame: Frame | None = None,
     encode: Encode | None = None,
 ) -> None:
@@ -96,7 +97,11 @@ async def write_outbox(
     Frames go as they are (text or binary) unless ``encode`` turns each into a protocol's
     messages (rosbridge's envelope, Foxglove's binary frame); a throttled reader (``rate_hz``)
     gets the newest frame each period, or with ``paced_queue`` the oldest frame its outbox holds
-    (rosbridge's ``throttle_rate`` with a ``queue_length``). Protocol adapters run one of these per subscription on
+    (rosbridge's ``throttle_rate`` with a ``queue_length``). ``spaced``: a period passes between
+    two frames (rosbridge's ``throttle_rate``, the least time between messages); else at most
+    ``rate_hz`` frames a second (the native socket's ``?rate=``): each frame is due a period after
+    the one before was due, so a reader asking near a topic's own rate gets it, not every other
+    frame. Protocol adapters run one of these per subscription on
     one socket: each write completes on its own, so frames of different subscriptions never
     interleave. ``outbox.busy_since`` is set while a send waits for the socket (the stall watch).
     """
@@ -118,9 +123,16 @@ async def write_outbox(
             else:
                 period_s = 1.0 / rate_hz
                 take = outbox.oldest if paced_queue else outbox.latest
+                clock = asyncio.get_running_loop().time
+                due = clock()
                 while True:
                     await _timed(send, outbox, await take(), forms)
-                    await asyncio.sleep(period_s)
+                    # Due times a period apart at least, and never before the last send: at most
+                    # one period's worth of frames a period, however late one came.
+                    due = clock() + period_s if spaced else max(due + period_s, clock())
+                    delay = due - clock()
+                    if delay > 0:
+                        await asyncio.sleep(delay)
     finally:
         outbox.send_now = None
         eager.cancel()

@@ -8,7 +8,7 @@ the options (``queue``, ``rate``, ``mode``, ``batch``), checks the token before 
 pumps frames both ways. What a frame *means* is the port's:
 
 - ``open(connection)``: a socket arrives; returns the latched frame to send it first, if any,
-  in the connection's encoding;
+  in the connection's encoding (or raises a SkydeckError to refuse it: closed with its code);
 - ``receive_frame(connection, frame)``: a client published a frame (text, or bytes on a msgpack
   socket): validate it and publish it,
   never back to the connection it came from (no echo); raise FrameRejected to refuse it;
@@ -80,22 +80,22 @@ async def serve_topic_socket(
     try:
         options = StreamOptions.from_query(websocket.query_params)
         port = find_port(websocket)
+        connection = TopicConnection(
+            options=options,
+            outbox=Outbox(options.outbox_size, encoding, batch=options.batch) if options.reads else None,
+            may_publish=token_matches(token, websocket),
+            encoding=encoding,
+        )
+        initial_frame = port.open(connection)  # a port may refuse the connection (the core's fences)
     except SkydeckError as error:
         await close_with(websocket, error.close_code, str(error))
         return
-    connection = TopicConnection(
-        options=options,
-        outbox=Outbox(options.outbox_size, encoding, batch=options.batch) if options.reads else None,
-        may_publish=token_matches(token, websocket),
-        encoding=encoding,
-    )
 
     def on_frame(frame: Frame) -> None:
         if not connection.may_publish:
             raise FrameRejected(Close.POLICY, NOT_AUTHORISED)
         port.receive_frame(connection, frame)
 
-    initial_frame = port.open(connection)
     try:
         rejected = await serve_stream(
             websocket,

@@ -85,8 +85,7 @@ def test_class_mode_refuses_a_bad_roster_or_folder_in_one_line(tmp_path: Path, c
     status, err = grade(capsys, shipped("estop"), "--class", tmp_path / "subs", "--roster", roster, "--out", tmp_path / "out")
     assert status == 2
     assert err == (
-        f"skydeck: error: {roster}:3: 'Ada' is named as 'ada' and 'Ada' (names differ in more than case): "
-        "each student needs a name of their own\n"
+        f"skydeck: error: {roster}:3: Ada is a student already (line 1): each student once\n"
     )
     status, err = grade(capsys, shipped("estop"), "--class", tmp_path / "nowhere", "--out", tmp_path / "out")
     assert (status, err.count("\n")) == (2, 1) and "nowhere: no such folder" in err

@@ -28,3 +28,5 @@ async def test_the_system_nodes_are_the_core_s_the_launch_s_and_rosapi_s(core) -
         graph = (await http.get(core.url + "/api/graph", timeout=5)).json()
     rosapi = {service["node"] for service in graph["services"] if service["name"].startswith("/rosapi/")}
     assert rosapi and rosapi <= SYSTEM_NODES
+    republisher = {s["node"] for s in graph["services"] if s["name"].startswith("/tf2_web_republisher/")}
+    assert republisher and republisher <= SYSTEM_NODES

@@ -83,6 +83,22 @@ export function topicUrl(topic, params = {}) {
 
 const sockets = new Set(); // every live TopicSocket, for the debug hook
 
+// Whether the page's token may read a topic (access.js, in a class): a socket that may not
+// waits, "fenced", instead of being refused by the core again and again.
+let readable = () => true;
+const fenced = new Set();
+
+/** Use `predicate(topic)` to decide what sockets may read; fenced sockets it now allows open. */
+export function setReadable(predicate) {
+  readable = predicate;
+  for (const socket of [...fenced]) {
+    if (!readable(socket.topic)) continue;
+    fenced.delete(socket);
+    socket._wanted = false;
+    socket.open();
+  }
+}
+
 // The topics someone publishes, from the latest graph (null before the first): a socket opened
 // with openWhenPublished() waits until its topic is one of them.
 let publishedTopics = null;
@@ -114,8 +130,9 @@ export function socketStates() {
  * type on the same socket (never sent back to it). mode "publish" reads nothing, "subscribe"
  * may not publish. encoding "msgpack" reads binary frames (byte arrays arrive as Uint8Array,
  * not base64: for images); such a socket only reads. Reconnects with exponential backoff (0.5 s .. 10 s) until close().
- * onStatus({state, code, reason}) reports "connecting" | "open" | "closed" | "stopped", and
- * "waiting" for a socket opened with openWhenPublished() whose topic nobody publishes yet.
+ * onStatus({state, code, reason}) reports "connecting" | "open" | "closed" | "stopped",
+ * "waiting" for a socket opened with openWhenPublished() whose topic nobody publishes yet, and
+ * "fenced" for one reading a topic the page's token may not read (setReadable).
  */
 export class TopicSocket {
   constructor(topic, { rate, queue, type, mode, encoding, onMessage, onStatus, onError } = {}) {
@@ -139,6 +156,11 @@ export class TopicSocket {
     if (this._wanted) return this;
     this._wanted = true;
     sockets.add(this);
+    if (this.params.mode !== "publish" && !readable(this.topic)) {
+      fenced.add(this);
+      this._setState("fenced");
+      return this;
+    }
     this._connect();
     return this;
   }
@@ -161,6 +183,7 @@ export class TopicSocket {
   close() {
     this._wanted = false;
     waitingForPublisher.delete(this);
+    fenced.delete(this);
     sockets.delete(this);
     clearTimeout(this._timer);
     if (this._ws) {

@@ -12,6 +12,7 @@ export function getToken() {
 function setToken(token) {
   if (token) sessionStorage.setItem(STORAGE_KEY, token);
   else sessionStorage.removeItem(STORAGE_KEY);
+  window.dispatchEvent(new Event("skydeck-token")); // who the page is may change (access.js)
 }
 
 /**

@@ -1,9 +1,11 @@
 // Wires the dashboard together and exposes a read-only debug hook on `window.skydeck`.
 
+import { Access } from "./access.js";
 import { ActionsPanel } from "./actions.js";
-import { socketStates, updatePublished } from "./api.js";
+import { setReadable, socketStates, updatePublished } from "./api.js";
 import { initTokenButton } from "./auth.js";
 import { CameraView } from "./camera.js";
+import { ClassPage } from "./class_page.js";
 import { Commands } from "./commands.js";
 import { LogConsole } from "./console.js";
 import { GraphPoller, GraphTables } from "./graph.js";
@@ -25,6 +27,11 @@ import { DRONE_TOPICS, World } from "./world.js";
 
 const $ = (id) => document.getElementById(id);
 
+// What the page's token may do: in a class, a student's page reads and lists only what their
+// token may read (access.js); the instructor's has the Class tab.
+const access = new Access();
+setReadable((topic) => access.mayRead(topic));
+
 const world = new World();
 const room = new Room(); // the robot world's state, started when /simulator/world says so
 const graph = new GraphPoller();
@@ -37,7 +44,8 @@ const windows = new WindowsView({ tab: $("windows-tab"), list: $("windows-list")
 viewTabs.addEventListener("change", () => {
   view3d.setShown(viewTabs.current === "view3d");
   windows.setShown(viewTabs.current === "windows");
-  localStorage.setItem("skydeck.view", viewTabs.current);
+  classPage.setShown(viewTabs.current === "class");
+  if (viewTabs.current !== "class") localStorage.setItem("skydeck.view", viewTabs.current);
 });
 
 const commands = new Commands({
@@ -96,6 +104,16 @@ const pick = (name) => {
   tabs.show("inspector");
   inspector.inspect(name);
 };
+const classPage = new ClassPage({
+  tab: $("class-tab"),
+  table: $("class-table"),
+  detail: $("class-detail"),
+  assignment: $("class-assignment"),
+  note: $("class-note"),
+  canvas: $("class-canvas"),
+  graph,
+  onPick: pick,
+});
 const tables = new GraphTables({ topics: $("topic-list"), services: $("service-list"), nodes: $("node-list"), onPick: pick });
 const diagram = new GraphDiagram({ container: $("graph-diagram"), showDebug: $("graph-show-debug"), onPick: pick });
 const layersPanel = new LayersPanel({
@@ -177,6 +195,15 @@ function renderMission() {
 world.addEventListener("ai-status", renderMission);
 
 initTokenButton($("token-button"));
+graph.filter = (g) => access.filterGraph(g);
+access.addEventListener("change", () => {
+  setReadable((topic) => access.mayRead(topic));
+  classPage.setAvailable(access.isInstructor);
+  if (access.isInstructor && location.hash === "#class") viewTabs.show("class");
+  if (world.kind) applyWorld(); // a student's robots only
+});
+window.addEventListener("skydeck-token", () => access.refresh());
+access.refresh();
 tabs.show("topics");
 viewTabs.show(["view3d", "windows"].includes(localStorage.getItem("skydeck.view")) ? localStorage.getItem("skydeck.view") : "map");
 world.start();
@@ -193,11 +220,13 @@ function applyWorld() {
   for (const element of document.querySelectorAll("[data-world]")) element.hidden = element.dataset.world !== kind;
   const robots = $("teleop-robot");
   if (kind === "robot") {
-    room.start(world.namespaces);
+    // In a class, a student's robot only: the one whose odometry their token may read.
+    const namespaces = world.namespaces.filter((ns) => access.mayRead(topicIn(ns, ROBOT_TOPICS.odom)));
+    room.start(namespaces);
     plots.use(room, "robot");
-    robots.replaceChildren(...world.namespaces.map((ns) => new Option(ns === "/" ? "robot" : ns.slice(1), ns)));
-    robots.hidden = world.namespaces.length < 2;
-    teleop.setTarget("robot", topicIn(world.namespaces[0] || "/", ROBOT_TOPICS.cmd_vel));
+    robots.replaceChildren(...namespaces.map((ns) => new Option(ns === "/" ? "robot" : ns.slice(1), ns)));
+    robots.hidden = namespaces.length < 2;
+    teleop.setTarget("robot", topicIn(namespaces[0] || "/", ROBOT_TOPICS.cmd_vel));
   } else {
     room.stop();
     plots.use(world, "drone");
@@ -297,6 +326,13 @@ window.skydeck = Object.freeze({
   windowPoint: (topic, x, y) => windows.panel(topic)?.clientPoint(x, y) ?? null,
   /** The 3D view: fixed frame, frames, camera, world, displays (what each draws, in the fixed frame), frame times. */
   view3d: (options) => view3d.snapshot(options),
+  /** The page's token as the core described it (GET /api/access), and the class page's state. */
+  get access() {
+    return copy(access.described);
+  },
+  get classPage() {
+    return classPage.snapshot();
+  },
 });
 
 function renderLegendLayers() {
