@@ -45,10 +45,13 @@ class Class:
 def running(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Class]:
     folder = tmp_path_factory.mktemp("class")
     (folder / "students.csv").write_text("name\nalice\nbob\n")
+    # The default shared reads, written out: the class starts with its rules file as given.
+    (folder / "rules.yaml").write_text("shared:\n  read: [/clock, /tf, /tf_static, /simulator/world, /simulator/obstacles]\n")
     base = free_port_block(1100)  # the core, the world, and the endpoints moved with the base port
     process = BackgroundProcess(
         [sys.executable, "-m", "services.cli", "class", str(folder / "students.csv"), "--base-port", str(base),
-         "--seed", "7", "--gradebook", str(folder / "gradebook.json")],
+         "--seed", "7", "--gradebook", str(folder / "gradebook.json"), "--rules", str(folder / "rules.yaml"),
+         "--speed", "1", "--obstacles", "0", "--advertise", "127.0.0.1"],
         name="class", cwd=folder, env={**os.environ, "PYTHONUNBUFFERED": "1"},
     )  # fmt: skip
     try:

@@ -95,8 +95,10 @@ async def test_service_list_leads_with_the_commands_and_shows_skydeck_s_own_with
     assert not [name for name in names if name.startswith("/rosapi/")]
     status, out, _ = await skydeck(core.url, "service", "list", "--all", "-t")
     lines = out.splitlines()
-    assert status == 0 and lines[: len(names)] == [line for line in lines if not line.startswith("/rosapi/")]
+    assert status == 0 and [line.split()[0] for line in lines[: len(names)]] == names
+    # Skydeck's own after them: rosapi's and tf2_web_republisher's (for rosbridge clients)
     assert "/rosapi/topics [rosapi_msgs/srv/Topics]" in lines[len(names) :]
+    assert "/republish_tfs [tf2_web_republisher/srv/RepublishTFs]" in lines[len(names) :]
     status, out, _ = await skydeck(core.url, "service", "list", "-a")
     assert out.split()[: len(names)] == names and len(out.split()) > len(names)
 

@@ -11,7 +11,8 @@ from tests.services.grading.assignments import SOLUTIONS, shipped
 
 
 def grade(capsys: pytest.CaptureFixture[str], *args: object) -> tuple[int, str]:
-    status = main(["grade", *(str(a) for a in args)])
+    args = tuple(str(a) for a in args)
+    status = main(["grade", *args])
     err = capsys.readouterr().err
     return status, err
 
