@@ -26,7 +26,7 @@ __all__ = ["class_table", "read_gradebook", "router"]
 router = APIRouter(prefix="/api", tags=["class"])
 
 
-@router.get("/class", responses=FENCED)
+@router.get("/class", responses={**FENCED, 404: {"description": "This core runs no class (`skydeck class ROSTER` starts one)"}})
 async def class_page(request: Request, visitor: VisitorDep) -> dict[str, Any]:
     """The class: each student's nodes, last message age and grade (the instructor's token)."""
     fences: Fences = request.app.state.fences
