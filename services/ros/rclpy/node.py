@@ -13,6 +13,7 @@ bridge's loop. Callbacks run where the program spins the node (:mod:`~services.r
 
 from __future__ import annotations
 
+import weakref
 from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
@@ -93,6 +94,9 @@ class Node:
         self._rclpy_logger = node_logger(node, rosout=enable_rosout)
         self._rclpy_destroyed = False
         ACTIVITY.watch(self, self._rclpy_has_work)  # a lockstep run waits for its callbacks
+        # ...until the node is gone: destroyed, or its context shut down (no executor runs them then)
+        this = weakref.ref(self)
+        self._rclpy_context.on_shutdown(lambda: _stop_watching(this))
         bridge.start_node(node)
         wait_for_first_clock(node.get_clock())
 
@@ -285,6 +289,7 @@ class Node:
         if self._rclpy_destroyed:
             return
         self._rclpy_destroyed = True
+        ACTIVITY.unwatch(self)
         for timer in list(self.timers):
             timer._due = False
         if self._rclpy_executor is not None:
@@ -426,3 +431,7 @@ def _no_more(kwargs: dict[str, Any], verb: str) -> None:
         raise TypeError(f"{verb}() got unexpected keyword arguments: {', '.join(kwargs)}")
 
 
+def _stop_watching(node: weakref.ref[Node]) -> None:
+    alive = node()
+    if alive is not None:
+        ACTIVITY.unwatch(alive)
