@@ -90,8 +90,10 @@ async def test_ai_killed_mid_mission_comes_back_and_finishes_without_a_second_vi
     # No second visit: control was sent to each box exactly once, across the AI's restart (the
     # restarted AI's command to the box it was flying to is refused as the same target).
     commands = _fly_commands(system.lines)
+    # (Near the box, not at it: perception's first reading can be of a box still settling, and
+    # the AI aims at where it saw the box last; boxes stand metres apart.)
     for box in boxes:
-        assert sum(math.dist(box, target) < 0.01 for target in commands) == 1, (box, commands)
+        assert sum(math.dist(box, target) < 0.5 for target in commands) == 1, (box, commands)
 
     # A finished world stays finished: the AI restarted after "done" does not fly it again.
     take_offs = sum("Handling take off!" in line for line in system.lines)
