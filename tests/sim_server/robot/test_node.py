@@ -132,7 +132,9 @@ def test_raw_frames_drive_the_robot_and_the_scan_reads_the_true_wall_distance(ro
         assert not (bump["left_side"] or bump["right_side"])
         command["x"] = 0.0
     x, _, _ = truth(room)
-    assert x == pytest.approx(ROOM_HALF_SIZE_M - ROBOT_RADIUS_M, abs=0.01)
+    # Against the wall: within 2 cm (the stop can land a step after the contact, and the body
+    # then rests a little off the wall it pushed into).
+    assert x == pytest.approx(ROOM_HALF_SIZE_M - ROBOT_RADIUS_M, abs=0.02)
 
 
 def test_a_twist_that_is_not_finite_is_refused_and_the_robot_stops(room: System) -> None:
