@@ -20,7 +20,6 @@ from __future__ import annotations
 import argparse
 import asyncio
 import json
-import re
 import sys
 from pathlib import Path
 
@@ -29,7 +28,6 @@ from services.cli.settings import cli_settings
 __all__ = ["add_parser"]
 
 EXIT_PASSED, EXIT_FAILED, EXIT_ERROR = 0, 1, 2
-_STUDENT = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,63}$")
 
 
 def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -81,8 +79,12 @@ def _grade(args: argparse.Namespace) -> int:
         return _grade_class(args)
     if args.roster is not None:
         return _error("--roster goes with --class SUBMISSIONS (it says whose folders are graded)")
-    if not _STUDENT.match(args.student):
-        return _error(f"--student {args.student!r}: letters, digits, '_', '.' and '-' only (it names a folder)")
+    from services.grading.students import RosterError, check_student_name
+
+    try:
+        check_student_name(args.student)  # the class's rule: graded alone as in a class
+    except RosterError as error:
+        return _error(f"--student {args.student!r}: {error}")
     try:
         assignment = load_assignment(Path(args.assignment))
         check_files(args.files)
