@@ -40,7 +40,7 @@ def class_room(suite: Suite) -> Family:
 
     s = suite.settings
     students = s.class_students
-    window = max(s.sim_window_s, 3.0)
+    window = s.class_window_s
     trials = [
         Trial("world_max", f"{students} robots, every scan, odometry and bumper read, speed max",
               lambda: measure_class("world_max", students=students, window_s=window)),

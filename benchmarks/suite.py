@@ -45,6 +45,7 @@ class Settings:
     fence_messages: int = 20_000
     class_students: int = 30
     class_repetitions: int = 1
+    class_window_s: float = 3.0
 
 
 QUICK = Settings(
@@ -60,7 +61,7 @@ FULL = Settings(
     service_repetitions=5, service_calls=2000,
     sim_repetitions=3, sim_window_s=3.0, sim_bare_steps=4800,
     mission_worlds=20, mission_flights=5, startup_repetitions=3,
-    viewers_s=10.0, viewers_repetitions=2,
+    viewers_s=10.0, viewers_repetitions=2, class_repetitions=3, class_window_s=10.0,
 )  # fmt: skip
 
 

@@ -1,15 +1,19 @@
-"""Reading a text file a user names (a launch file, an assignment, a roster): one wording for
-what can go wrong, raised as the caller's own error.
+"""Reading a text a user gives (a launch file, an assignment, a roster, a params file, a
+command line's DATA): one wording for what can go wrong, raised as the caller's own error.
 
     text = read_text_file(path, "roster file", lambda reason: RosterError(f"{path}: {reason}"))
+    data = parse_yaml(text, lambda reason: RosterError(f"{path}: {reason}"))
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
-__all__ = ["read_text_file"]
+import yaml
+
+__all__ = ["parse_yaml", "read_text_file"]
 
 
 def read_text_file(path: Path, what: str, error: Callable[[str], Exception]) -> str:
@@ -23,3 +27,16 @@ def read_text_file(path: Path, what: str, error: Callable[[str], Exception]) -> 
         raise error(f"is a folder, not a {what}") from None
     except (OSError, UnicodeDecodeError) as problem:
         raise error(f"cannot read it: {getattr(problem, 'strerror', None) or problem}") from None
+
+
+def parse_yaml(text: str, error: Callable[[str], Exception], *, nodes: bool = False) -> Any:
+    """The document in ``text`` (``yaml.safe_load``'s values, or with ``nodes`` ``yaml.compose``'s
+    nodes, which keep their lines); a syntax error raises ``error(reason)``, the reason
+    ``YAML syntax error at line L, column C: PROBLEM``."""
+    try:
+        return yaml.compose(text) if nodes else yaml.safe_load(text)
+    except yaml.YAMLError as problem:
+        mark = getattr(problem, "problem_mark", None)
+        what = getattr(problem, "problem", None) or str(problem).splitlines()[0]
+        where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark is not None else ""
+        raise error(f"YAML syntax error{where}: {what}") from None

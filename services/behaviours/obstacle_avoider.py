@@ -14,6 +14,7 @@ slower the more it has to turn. The goal is in the odom frame (where the robot s
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field
 
 from services.behaviours.laser import points
 from services.behaviours.robot import Pose2D, RobotBehaviour, run_behaviour
@@ -50,22 +51,19 @@ def clear_headings(
     return clear
 
 
+@dataclass
 class GoalSeeker:
     """Driving to a goal around obstacles, as a controller: ``update(scan, pose)``; ``reached``."""
 
-    def __init__(
-        self, goal: tuple[float, float], speed: float = 0.2, margin: float = 0.12,
-        lookahead: float = 0.8, tolerance: float = 0.1,
-    ) -> None:  # fmt: skip
-        self.goal = goal
-        self.speed = speed
-        self.margin = margin
-        self.lookahead = lookahead
-        self.tolerance = tolerance
-        self.reached = False
-        self.state = "driving"
-        self._last: float | None = None
-        """The heading taken last, in the odom frame (the robot's own turning is no change)."""
+    goal: tuple[float, float]
+    speed: float = 0.2
+    margin: float = 0.12
+    lookahead: float = 0.8
+    tolerance: float = 0.1
+    reached: bool = field(default=False, init=False)
+    state: str = field(default="driving", init=False)
+    _last: float | None = field(default=None, init=False, repr=False)
+    """The heading taken last, in the odom frame (the robot's own turning is no change)."""
 
     def update(self, scan: LaserScan, pose: Pose2D) -> tuple[float, float]:
         distance = pose.distance_to(*self.goal)

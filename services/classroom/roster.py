@@ -21,11 +21,9 @@ import io
 from dataclasses import dataclass
 from pathlib import Path
 
-import yaml
-
 from services.access import ClassTokensError, check_student_name
 from shared_models.errors import SkydeckError
-from shared_models.text_files import read_text_file
+from shared_models.text_files import parse_yaml, read_text_file
 from sim_server.robot.limits import MAX_CLASS_ROBOTS  # pure constants: no PyBullet
 
 __all__ = ["CLASS_WORLDS", "ClassroomError", "Roster", "check_names", "read_roster"]
@@ -83,10 +81,7 @@ def _from_csv(path: Path, text: str) -> list[tuple[int, str]]:
 
 
 def _from_yaml(path: Path, text: str) -> tuple[list[tuple[int, str]], str]:
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as error:
-        raise ClassroomError(f"{path}: not YAML: {str(error).splitlines()[0]}") from None
+    data = parse_yaml(text, lambda reason: ClassroomError(f"{path}: {reason}"))
     world: object = "robot"
     if isinstance(data, dict):
         unknown = sorted(str(key) for key in data if key not in ("students", "world"))

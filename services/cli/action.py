@@ -13,7 +13,7 @@ import asyncio
 import os
 from typing import Any
 
-from services.cli.arguments import add_verb, known_type_of, ros_name
+from services.cli.arguments import add_noun, add_verb, known_type_of, ros_name
 from services.cli.core_client import get_json, node_settings
 from services.cli.errors import CliError
 from services.cli.formatting import message_from, to_yaml
@@ -25,8 +25,7 @@ _CORE_NODE = "/skydeck_core"  # reads feedback for its own clients (the dashboar
 
 
 def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    action = subparsers.add_parser("action", help="list, inspect and send goals to actions")
-    verbs = action.add_subparsers(dest="verb", required=True, metavar="VERB")
+    verbs = add_noun(subparsers, "action", "list, inspect and send goals to actions")
 
     p = add_verb(verbs, "list", _list, "list the actions of the running system")
     p.add_argument("-t", "--show-types", action="store_true", help="show each action's type")

@@ -11,6 +11,7 @@ from pathlib import Path
 from services.cli.errors import CliError
 
 __all__ = [
+    "add_noun",
     "add_verb",
     "known_type_of",
     "known_type",
@@ -21,6 +22,13 @@ __all__ = [
     "use_current_workspace",
     "writable_file",
 ]
+
+
+def add_noun(
+    subparsers: argparse._SubParsersAction[argparse.ArgumentParser], name: str, help: str
+) -> argparse._SubParsersAction[argparse.ArgumentParser]:
+    """The command ``name`` (``topic``, ``bag``, ...) whose verbs the caller adds to what it returns."""
+    return subparsers.add_parser(name, help=help).add_subparsers(dest="verb", required=True, metavar="VERB")
 
 
 def add_verb(

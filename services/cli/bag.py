@@ -13,7 +13,7 @@ import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from services.cli.arguments import add_verb, known_type, positive_float, ros_name
+from services.cli.arguments import add_noun, add_verb, known_type, positive_float, ros_name
 from services.cli.core_client import core_url, get_json, node_settings
 from services.cli.errors import CliError
 
@@ -24,8 +24,7 @@ __all__ = ["add_parser"]
 
 
 def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    bag = subparsers.add_parser("bag", help="record topics to an MCAP file, show it, play it back")
-    verbs = bag.add_subparsers(dest="verb", required=True, metavar="VERB")
+    verbs = add_noun(subparsers, "bag", "record topics to an MCAP file, show it, play it back")
 
     p = verbs.add_parser("record", help="record topics into an MCAP file until Ctrl-C")
     p.add_argument("topics", nargs="*", metavar="TOPIC", help="topics to record (they may appear later)")

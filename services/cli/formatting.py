@@ -9,6 +9,7 @@ from typing import Any
 import yaml
 
 from services.cli.errors import CliError
+from shared_models.text_files import parse_yaml
 
 __all__ = ["message_from", "message_view", "parse_data", "system_name", "to_csv", "to_yaml"]
 
@@ -31,12 +32,7 @@ def parse_data(text: str | None) -> dict[str, Any]:
     """DATA as given on the command line: YAML or JSON (``"{x: 1.0, y: 2.0}"``); empty is ``{}``."""
     if text is None or not text.strip():
         return {}
-    try:
-        value = yaml.safe_load(text)
-    except yaml.YAMLError as error:
-        mark = getattr(error, "problem_mark", None)
-        where = f" at column {mark.column + 1}" if mark is not None else ""
-        raise CliError(f"DATA is not valid YAML or JSON{where}: {text!r}") from None
+    value = parse_yaml(text, lambda reason: CliError(f"DATA is not valid YAML or JSON ({reason}): {text!r}"))
     if value is None:
         return {}
     if not isinstance(value, dict):

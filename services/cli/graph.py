@@ -11,7 +11,7 @@ from services.cli.arguments import known_type, ros_name
 from services.cli.core_client import get_json, unknown_name
 from services.cli.errors import CliError
 
-__all__ = ["add_graph_verbs", "lookup", "print_sections"]
+__all__ = ["add_graph_verbs", "lookup", "lookup_in_graph", "print_sections"]
 
 Noun = Literal["topic", "service", "node"]
 Handler = Callable[[argparse.Namespace], int]
@@ -21,6 +21,12 @@ def lookup(noun: Noun, name: str) -> dict[str, Any]:
     """The core's record of the topic, service or node ``name``; an unknown one is a CliError
     with the nearest names the system has, and how to list them."""
     return get_json(f"/api/{noun}s{name}", missing=unknown_name(noun, name))  # type: ignore[no-any-return]
+
+
+def lookup_in_graph(noun: Noun, name: str) -> tuple[dict[str, Any], dict[str, Any]]:
+    """The record of ``name`` (:func:`lookup`) and the whole graph, for ``info``'s cross references
+    (a node's entities' types, a topic's publishers' URLs)."""
+    return lookup(noun, name), get_json("/api/graph")
 
 
 def print_sections(record: dict[str, Any], sections: tuple[tuple[str, str], ...], describe: Callable[[str], str]) -> None:

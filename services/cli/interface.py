@@ -4,15 +4,14 @@ from __future__ import annotations
 
 import argparse
 
-from services.cli.arguments import add_verb, known_type, use_current_workspace
+from services.cli.arguments import add_noun, add_verb, known_type, use_current_workspace
 from services.cli.formatting import to_yaml
 
 __all__ = ["add_parser"]
 
 
 def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    interface = subparsers.add_parser("interface", help="list and show message, service and action types")
-    verbs = interface.add_subparsers(dest="verb", required=True, metavar="VERB")
+    verbs = add_noun(subparsers, "interface", "list and show message, service and action types")
     p = verbs.add_parser("list", help="list every known type")
     kind = p.add_mutually_exclusive_group()
     kind.add_argument("-m", "--only-msgs", action="store_true", help="only message types")

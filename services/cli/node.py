@@ -7,19 +7,18 @@ import os
 import signal
 import time
 
-from services.cli.arguments import add_verb, node_name, positive_float, positive_int
+from services.cli.arguments import add_noun, add_verb, node_name, positive_float, positive_int
 from services.cli.core_client import error_detail, get, get_json, post_json
 from services.cli.errors import CliError
 from services.cli.formatting import system_name
-from services.cli.graph import lookup, print_sections
+from services.cli.graph import lookup, lookup_in_graph, print_sections
 from services.runtime.http_client import HttpError, HttpReply
 
 __all__ = ["add_parser"]
 
 
 def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    node = subparsers.add_parser("node", help="list and inspect nodes")
-    verbs = node.add_subparsers(dest="verb", required=True, metavar="VERB")
+    verbs = add_noun(subparsers, "node", "list and inspect nodes")
     add_verb(verbs, "list", _list, "list the running nodes")
     add_verb(verbs, "info", _info, "URL, pid, publications, subscriptions and services of a node", "node")
     p = add_verb(verbs, "ping", _ping, "check that a node answers, and how fast", "node")
@@ -36,9 +35,7 @@ def _list(args: argparse.Namespace) -> int:
 
 
 def _info(args: argparse.Namespace) -> int:
-    name = node_name(args.node)
-    node = lookup("node", name)
-    graph = get_json("/api/graph")
+    node, graph = lookup_in_graph("node", node_name(args.node))
     types = {t["name"]: t["type"] for t in graph["topics"]}
     types.update({s["name"]: s["type"] for s in graph["services"]})
     print("-" * 80)

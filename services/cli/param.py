@@ -7,7 +7,7 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-from services.cli.arguments import add_verb, node_name
+from services.cli.arguments import add_noun, add_verb, node_name
 from services.cli.core_client import error_detail, get_json, post_json
 from services.cli.errors import CliError
 from services.cli.formatting import to_yaml
@@ -18,8 +18,7 @@ _TIMEOUT_S = 10.0
 
 
 def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    param = subparsers.add_parser("param", help="list, get, set, dump and load node parameters")
-    verbs = param.add_subparsers(dest="verb", required=True, metavar="VERB")
+    verbs = add_noun(subparsers, "param", "list, get, set, dump and load node parameters")
 
     p = add_verb(verbs, "list", _list, "the parameter names of a node (of every node without NODE)")
     p.add_argument("node", nargs="?")

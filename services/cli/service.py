@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from services.cli.arguments import ros_name
+from services.cli.arguments import add_noun, ros_name
 from services.cli.core_client import error_detail, get_json, post_json, unknown_name
 from services.cli.errors import CliError
 from services.cli.formatting import parse_data, to_yaml
@@ -14,8 +14,7 @@ __all__ = ["add_parser"]
 
 
 def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    service = subparsers.add_parser("service", help="list, inspect and call services")
-    verbs = service.add_subparsers(dest="verb", required=True, metavar="VERB")
+    verbs = add_noun(subparsers, "service", "list, inspect and call services")
 
     listed = add_graph_verbs(
         verbs,

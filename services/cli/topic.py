@@ -10,11 +10,11 @@ import time
 from websockets.asyncio.client import connect
 from websockets.exceptions import ConnectionClosed, InvalidHandshake
 
-from services.cli.arguments import known_type_of, positive_float, positive_int, ros_name
+from services.cli.arguments import add_noun, known_type_of, positive_float, positive_int, ros_name
 from services.cli.core_client import auth_headers, core_url, get_json, ws_url
 from services.cli.errors import CliError
 from services.cli.formatting import message_from, message_view, system_name, to_csv, to_yaml
-from services.cli.graph import add_graph_verbs, lookup, print_sections
+from services.cli.graph import add_graph_verbs, lookup_in_graph, print_sections
 from services.cli.streams import check_topic, frames
 from services.cli.topic_stats import add_stats_parsers
 from shared_models.close_codes import Close
@@ -23,8 +23,7 @@ __all__ = ["add_parser"]
 
 
 def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    topic = subparsers.add_parser("topic", help="list, inspect, echo and publish topics")
-    verbs = topic.add_subparsers(dest="verb", required=True, metavar="VERB")
+    verbs = add_noun(subparsers, "topic", "list, inspect, echo and publish topics")
 
     listed = add_graph_verbs(
         verbs,
@@ -81,9 +80,7 @@ def _list(args: argparse.Namespace) -> int:
 
 
 def _info(args: argparse.Namespace) -> int:
-    name = ros_name(args.topic)
-    topic = lookup("topic", name)
-    graph = get_json("/api/graph")
+    topic, graph = lookup_in_graph("topic", ros_name(args.topic))
     urls = {node["name"]: node["url"] for node in graph["nodes"]}
     print(f"Type: {topic['type']}")
     if topic.get("rate_hz") is not None:

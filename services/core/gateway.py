@@ -13,6 +13,8 @@ Each request or socket is admitted by the core's fences (:mod:`services.access`)
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from fastapi.responses import JSONResponse, Response
 from starlette.requests import Request
 from starlette.websockets import WebSocket
@@ -35,24 +37,16 @@ def _error(status_code: int, detail: str) -> JSONResponse:
     return JSONResponse({"detail": detail}, status_code=status_code)
 
 
+@dataclass(frozen=True)
 class Gateway:
     """Routes names to nodes for HTTP and WebSocket clients of the core."""
 
-    def __init__(
-        self,
-        registry: Registry,
-        core: CoreNode,
-        settings: CoreSettings,
-        http: HttpClient,
-        calls: ServiceCalls,
-        fences: Fences,
-    ) -> None:
-        self._registry = registry
-        self._core = core
-        self._settings = settings
-        self._http = http
-        self._calls = calls
-        self._fences = fences
+    registry: Registry
+    core: CoreNode
+    settings: CoreSettings
+    http: HttpClient
+    calls: ServiceCalls
+    fences: Fences
 
     # -- HTTP ---------------------------------------------------------------------------------
 
@@ -64,7 +58,7 @@ class Gateway:
             return _error(404, str(error))
         if request.method == "POST":
             return await self._call_service(name, request)
-        refusal = self._fences.admit(presented_token(request)).refusal(Verb.READ, name)
+        refusal = self.fences.admit(presented_token(request)).refusal(Verb.READ, name)
         if refusal is not None:
             return _error(refusal.http_status, str(refusal))
         return await self._latest(name)
@@ -72,9 +66,9 @@ class Gateway:
     async def _call_service(self, name: str, request: Request) -> Response:
         """An HTTP client's call that the core's own protocol did not take (a browser's, one with
         ``?token=``, any under another server): the same call, its failure as a JSON ``detail``."""
-        caller = self._fences.admit(presented_token(request))
+        caller = self.fences.admit(presented_token(request))
         try:
-            reply = await self._calls.call(
+            reply = await self.calls.call(
                 name, await request.body(), caller=caller, content_type=request.headers.get("content-type")
             )
         except ServiceCallFailed as failed:
@@ -83,14 +77,14 @@ class Gateway:
 
     async def latest_frame(self, name: str) -> bytes | None:
         """The latest message of topic ``name`` (JSON), from the core or a publisher, if any."""
-        endpoint = self._core.endpoint(name)
+        endpoint = self.core.endpoint(name)
         if endpoint is not None and endpoint.latest_frame is not None:
             return endpoint.latest_frame.encode()
-        for publisher in self._registry.publishers(name):
+        for publisher in self.registry.publishers(name):
             if publisher.node == CORE_NODE:
                 continue
             try:
-                reply = await self._http.get(publisher.url.rstrip("/") + name, timeout_s=2.0)
+                reply = await self.http.get(publisher.url.rstrip("/") + name, timeout_s=2.0)
             except HttpError:
                 continue
             if reply.status == 200:
@@ -101,11 +95,11 @@ class Gateway:
         frame = await self.latest_frame(name)
         if frame is not None:
             return Response(frame, media_type="application/json")
-        if any(p.node != CORE_NODE for p in self._registry.publishers(name)):
+        if any(p.node != CORE_NODE for p in self.registry.publishers(name)):
             return _error(404, f"no message on {name} yet")
-        if self._registry.service(name) is not None:
+        if self.registry.service(name) is not None:
             return _error(405, f"{name} is a service: call it with POST")
-        if self._registry.topic_type(name) is not None:
+        if self.registry.topic_type(name) is not None:
             return _error(404, f"{name} has no publisher: see `skydeck topic info {name}`")
         return _error(404, f"no topic or service {name}: see `skydeck topic list` or GET /api/graph")
 
@@ -115,10 +109,10 @@ class Gateway:
         """A topic's stream through the core node (see :mod:`services.core.gateway_topic`): the
         topic fences the socket (reading when it opens, publishing at its first frame), so the
         edge checks no token of its own."""
-        await serve_topic_socket(websocket, self._find_topic, token="", stall_timeout_s=self._settings.reader_stall_s)
+        await serve_topic_socket(websocket, self._find_topic, token="", stall_timeout_s=self.settings.reader_stall_s)
 
     def _find_topic(self, websocket: WebSocket) -> GatewayTopic:
         name = resolve_name(websocket.scope["path"])  # InvalidNameError closes with 1008
         declared = declared_type(websocket.query_params.get("type"))
-        return GatewayTopic(self._core, self._registry, name, declared, visitor=self._fences.admit(presented_token(websocket)))
+        return GatewayTopic(self.core, self.registry, name, declared, visitor=self.fences.admit(presented_token(websocket)))
 

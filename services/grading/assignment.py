@@ -35,12 +35,11 @@ import math
 from pathlib import Path
 from typing import Any, Literal
 
-import yaml
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
 from services.grading.criteria import CRITERIA, CriterionSpec, Options
 from shared_models.errors import SkydeckError
-from shared_models.text_files import read_text_file
+from shared_models.text_files import parse_yaml, read_text_file
 
 __all__ = ["Assignment", "AssignmentError", "CriterionUse", "SeedKind", "load_assignment"]
 
@@ -204,12 +203,7 @@ def hidden_seed(secret: str, assignment: str, index: int) -> int:
 def load_assignment(path: Path) -> Assignment:
     """Read and check an assignment file; AssignmentError names the file and the field."""
     text = read_text_file(path, "assignment file", lambda reason: AssignmentError(f"{path}: {reason}"))
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as error:
-        mark = getattr(error, "problem_mark", None)
-        where = f" (line {mark.line + 1})" if mark is not None else ""
-        raise AssignmentError(f"{path}: not YAML{where}: {getattr(error, 'problem', error)}") from None
+    data = parse_yaml(text, lambda reason: AssignmentError(f"{path}: {reason}"))
     if not isinstance(data, dict):
         raise AssignmentError(f"{path}: an assignment is a mapping of fields (assignment, world, criteria...)")
     try:

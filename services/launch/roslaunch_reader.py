@@ -24,6 +24,7 @@ from services.launch.roslaunch_xml import Element, read_xml
 from services.launch.settings import LaunchSettings
 from services.runtime.rosparam import check_parameter_value, parameter_tokens
 from shared_models.names import InvalidNameError, resolve_name, resolve_node_name
+from shared_models.text_files import parse_yaml
 
 __all__ = ["load_roslaunch_file"]
 
@@ -270,12 +271,7 @@ class _Reader:
             text = element.text
         if "subst_value" in values and _boolean(values["subst_value"], lambda: self.fail(scope, element, "subst_value is not true or false")):
             text = self.substitute(scope, element, text)
-        try:
-            data = yaml.safe_load(text) if text.strip() else None
-        except yaml.YAMLError as error:
-            mark = getattr(error, "problem_mark", None)
-            where = f" (its line {mark.line + 1})" if mark is not None else ""
-            raise self.fail(scope, element, f"not valid YAML{where}: {getattr(error, 'problem', error)}") from None
+        data = parse_yaml(text, lambda reason: self.fail(scope, element, f"its text: {reason}")) if text.strip() else None
         base = self.parameter_name(scope, element, values["ns"], private) if "ns" in values else None
         if "param" in values:
             name = self.parameter_name(scope, element, values["param"], private, namespace=base)

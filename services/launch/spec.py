@@ -27,7 +27,6 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Annotated, Any
 
-import yaml
 from pydantic import (
     AfterValidator,
     BaseModel,
@@ -43,6 +42,7 @@ from pydantic_core import ErrorDetails, PydanticCustomError
 from services.builtin_nodes import BUILTIN_NODES
 from services.launch.arguments import LaunchArgument, fill_arguments, substitute
 from services.launch.errors import LaunchError, LaunchFileError, read_launch_text
+from shared_models.text_files import parse_yaml
 from sim_server.worlds import default_world, world_options  # the table only: no PyBullet
 
 __all__ = [
@@ -266,10 +266,7 @@ def load_launch_file(path: str | Path, arguments: Mapping[str, str] | None = Non
     """
     path = Path(path)
     text = read_launch_text(path)
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as error:
-        raise LaunchFileError(path, _yaml_problem(error)) from None
+    data = parse_yaml(text, lambda reason: LaunchFileError(path, reason))
     if data is None:
         raise LaunchFileError(path, "the file is empty: expected a mapping with a `nodes:` list")
     if not isinstance(data, dict):
@@ -305,14 +302,6 @@ def _resolve_paths(spec: LaunchSpec, path: Path) -> LaunchSpec:
             raise LaunchFileError(path, f"nodes[{index}].run: no such node file {file}")
         nodes.append(node.model_copy(update={"run": str(file)}))
     return spec.model_copy(update={"nodes": tuple(nodes)})
-
-
-def _yaml_problem(error: yaml.YAMLError) -> str:
-    mark = getattr(error, "problem_mark", None)
-    problem = getattr(error, "problem", None) or str(error).splitlines()[0]
-    if mark is not None:
-        return f"YAML syntax error at line {mark.line + 1}, column {mark.column + 1}: {problem}"
-    return f"YAML syntax error: {problem}"
 
 
 def _validation_problem(error: ValidationError) -> str:

@@ -137,7 +137,7 @@ class Node(ParametersMixin):
             allow_undeclared_parameters=allow_undeclared_parameters,
             on_event=self._publish_parameter_event,
         )
-        self._parameters.add_post_set_callback(self._parameters_changed)
+        self._parameters.post_set_callbacks.append(self._parameters_changed)
         self.declare_parameter(
             "use_sim_time",
             self.settings.use_sim_time,

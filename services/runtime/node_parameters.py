@@ -113,15 +113,15 @@ class ParametersMixin:
 
     def add_on_set_parameters_callback(self, callback: SetParametersCallback) -> None:
         """``callback(list[Parameter]) -> SetParametersResult`` is asked before every change and
-        may refuse it with a reason (``successful=False, reason=...``)."""
-        self._parameters.add_on_set_callback(callback)
+        may refuse it with a reason (``successful=False, reason=...``); the latest added is asked first."""
+        self._parameters.on_set_callbacks.insert(0, callback)
 
     def remove_on_set_parameters_callback(self, callback: SetParametersCallback) -> None:
-        self._parameters.remove_on_set_callback(callback)
+        self._parameters.on_set_callbacks.remove(callback)
 
     def add_post_set_parameters_callback(self, callback: Callable[[list[Parameter]], None]) -> None:
         """``callback(list[Parameter])`` after every accepted change (rclpy's post-set callback)."""
-        self._parameters.add_post_set_callback(callback)
+        self._parameters.post_set_callbacks.append(callback)
 
     def remove_post_set_parameters_callback(self, callback: Callable[[list[Parameter]], None]) -> None:
-        self._parameters.remove_post_set_callback(callback)
+        self._parameters.post_set_callbacks.remove(callback)

@@ -132,8 +132,11 @@ class NodeParameters:
         self._on_event = on_event
         self._values: dict[str, Parameter] = {}
         self._descriptors: dict[str, ParameterDescriptor] = {}
-        self._on_set: list[SetParametersCallback] = []
-        self._post_set: list[Callable[[list[Parameter]], None]] = []
+        # The node's add_/remove_..._parameters_callback edit these lists.
+        self.on_set_callbacks: list[SetParametersCallback] = []
+        """Asked in order before every change (``-> SetParametersResult``); the first refusal refuses it."""
+        self.post_set_callbacks: list[Callable[[list[Parameter]], None]] = []
+        """Told after every accepted change (to act on the new values)."""
 
     # -- declaring ----------------------------------------------------------------------------
 
@@ -251,21 +254,6 @@ class NodeParameters:
 
     # -- setting ------------------------------------------------------------------------------
 
-    def add_on_set_callback(self, callback: SetParametersCallback) -> None:
-        """``callback(parameters) -> SetParametersResult`` checks every change before it is made;
-        the latest added is asked first, and the first refusal refuses the change."""
-        self._on_set.insert(0, callback)
-
-    def remove_on_set_callback(self, callback: SetParametersCallback) -> None:
-        self._on_set.remove(callback)
-
-    def add_post_set_callback(self, callback: Callable[[list[Parameter]], None]) -> None:
-        """``callback(parameters)`` after every accepted change (to act on the new values)."""
-        self._post_set.append(callback)
-
-    def remove_post_set_callback(self, callback: Callable[[list[Parameter]], None]) -> None:
-        self._post_set.remove(callback)
-
     def set(self, parameters: Iterable[Parameter]) -> list[SetParametersResult]:
         """Set each parameter on its own; one result per parameter, in order."""
         parameters = list(parameters)
@@ -302,7 +290,7 @@ class NodeParameters:
             if refusal:
                 return SetParametersResult(successful=False, reason=refusal)
             accepted.append(parameter)
-        for callback in list(self._on_set):
+        for callback in list(self.on_set_callbacks):
             result = callback(list(accepted))
             if not isinstance(result, SetParametersResult):
                 raise TypeError(
@@ -333,7 +321,7 @@ class NodeParameters:
             if descriptor.type == _Type.NOT_SET and parameter.type_.is_array and parameter.value:
                 descriptor.type = int(parameter.type_)  # declared with [], typed by its first list
             self._values[name] = parameter
-        for callback in self._post_set:
+        for callback in self.post_set_callbacks:
             callback(new + changed)
         self._publish(new=new, changed=changed, deleted=deleted)
 

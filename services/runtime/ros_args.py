@@ -36,6 +36,7 @@ import yaml
 from services.runtime.parameter import Parameter
 from shared_models.errors import SkydeckError
 from shared_models.names import InvalidNameError, resolve_name, resolve_node_name
+from shared_models.text_files import parse_yaml
 
 __all__ = [
     "NameResolver",
@@ -314,11 +315,7 @@ def _params_file(path_text: str) -> list[ParameterRule]:
 
 def rules_from_params_yaml(text: str) -> list[ParameterRule]:
     """The rules of a ROS 2 params file (``/node: {ros__parameters: {...}}``), in file order."""
-    try:
-        document = yaml.safe_load(text)
-    except yaml.YAMLError as error:
-        mark = getattr(error, "problem_mark", None)
-        raise RosArgumentsError(f"not valid YAML{f' (line {mark.line + 1})' if mark else ''}") from None
+    document = parse_yaml(text, RosArgumentsError)
     if not isinstance(document, dict):
         raise RosArgumentsError("expected a mapping of node names to {ros__parameters: {...}}")
     rules: list[ParameterRule] = []

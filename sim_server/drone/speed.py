@@ -6,7 +6,6 @@ Run ``python -m sim_server.drone.speed`` for a one-off reading; the benchmark su
 
 from __future__ import annotations
 
-import argparse
 import time
 from dataclasses import dataclass
 
@@ -14,6 +13,7 @@ import pybullet as p
 
 from sim_server.drone.limits import PHYSICS_HZ
 from sim_server.drone.world import World, WorldConfig
+from sim_server.speed_command import print_reading
 
 __all__ = ["SpeedReading", "measure"]
 
@@ -36,6 +36,14 @@ class SpeedReading:
     def overhead(self) -> float:
         """Extra wall-clock time per step of the world relative to the bare loop (0.1 = 10%)."""
         return self.bare_steps_per_s / self.world_steps_per_s - 1.0
+
+    def __str__(self) -> str:
+        return (
+            f"world: {self.world_steps_per_s:,.0f} steps/s "
+            f"({self.real_time_factor:.1f}x real time); "
+            f"bare stepSimulation loop: {self.bare_steps_per_s:,.0f} steps/s; "
+            f"overhead {self.overhead:.0%}"
+        )
 
 
 def measure(*, seed: int = 1, boxes: int = 8, steps: int = 4800, repeats: int = 3) -> SpeedReading:
@@ -76,17 +84,7 @@ def _bare_rate(seed: int, boxes: int, steps: int) -> float:
 
 def main() -> None:
     """Print one reading."""
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--boxes", type=int, default=8)
-    parser.add_argument("--steps", type=int, default=4800)
-    args = parser.parse_args()
-    reading = measure(boxes=args.boxes, steps=args.steps)
-    print(
-        f"world: {reading.world_steps_per_s:,.0f} steps/s "
-        f"({reading.real_time_factor:.1f}x real time); "
-        f"bare stepSimulation loop: {reading.bare_steps_per_s:,.0f} steps/s; "
-        f"overhead {reading.overhead:.0%}"
-    )
+    print_reading(__doc__ or "", measure, count="boxes", default=8)
 
 
 if __name__ == "__main__":

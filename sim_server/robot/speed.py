@@ -8,7 +8,6 @@ never in pass/fail tests.
 
 from __future__ import annotations
 
-import argparse
 import time
 from dataclasses import dataclass
 
@@ -22,6 +21,7 @@ from sim_server.robot.limits import (
     SCAN_EVERY_STEPS,
 )
 from sim_server.robot.world import RobotWorld, RobotWorldConfig
+from sim_server.speed_command import print_reading
 
 __all__ = ["RobotSpeedReading", "measure"]
 
@@ -47,6 +47,13 @@ class RobotSpeedReading:
     def real_time_factor(self) -> float:
         """Sim seconds per wall-clock second of the world."""
         return self.world_steps_per_s / PHYSICS_HZ
+
+    def __str__(self) -> str:
+        return (
+            f"robot world: {self.real_time_factor:.1f}x real time, {self.scan_ms:.2f} ms a scan; "
+            f"bare loop: {self.bare_steps_per_s / PHYSICS_HZ:.1f}x, {self.bare_scan_ms:.2f} ms a scan; "
+            f"per CPU second: world {self.world_steps_per_cpu_s / PHYSICS_HZ:.1f}x, bare {self.bare_steps_per_cpu_s / PHYSICS_HZ:.1f}x"
+        )
 
 
 def measure(*, seed: int = 1, robots: int = 1, steps: int = 4800, repeats: int = 3) -> RobotSpeedReading:
@@ -141,16 +148,7 @@ def _bare_rate(seed: int, robots: int, steps: int) -> _Run:
 
 def main() -> None:
     """Print one reading."""
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--robots", type=int, default=1)
-    parser.add_argument("--steps", type=int, default=4800)
-    args = parser.parse_args()
-    reading = measure(robots=args.robots, steps=args.steps)
-    print(
-        f"robot world: {reading.real_time_factor:.1f}x real time, {reading.scan_ms:.2f} ms a scan; "
-        f"bare loop: {reading.bare_steps_per_s / PHYSICS_HZ:.1f}x, {reading.bare_scan_ms:.2f} ms a scan; "
-        f"per CPU second: world {reading.world_steps_per_cpu_s / PHYSICS_HZ:.1f}x, bare {reading.bare_steps_per_cpu_s / PHYSICS_HZ:.1f}x"
-    )
+    print_reading(__doc__ or "", measure, count="robots", default=1)
 
 
 if __name__ == "__main__":

@@ -55,6 +55,7 @@ from services.launch.ros2.substitutions import (
     UnlessCondition,
 )
 from services.launch.roslaunch_xml import Element, read_xml
+from shared_models.text_files import parse_yaml
 
 __all__ = ["load_markup"]
 
@@ -273,12 +274,7 @@ def _flag(value: list[Substitution] | None, default: bool, place: Place) -> bool
 
 def _read_yaml(path: Path) -> Element:
     """A ROS 2 YAML launch file as the elements its XML would have (lines kept)."""
-    try:
-        document = yaml.compose(read_launch_text(path))
-    except yaml.YAMLError as error:
-        mark = getattr(error, "problem_mark", None)
-        line = mark.line + 1 if mark is not None else 0
-        raise Place(path, line).error(f"YAML syntax error: {getattr(error, 'problem', None) or error}") from None
+    document = parse_yaml(read_launch_text(path), Place(path).error, nodes=True)
     if not isinstance(document, yaml.MappingNode):
         raise Place(path).error("expected a mapping with a `launch:` list at the top")
     for key, value in document.value:

@@ -225,7 +225,7 @@ def test_rosparam_loads_yaml_inline_and_from_files_merged_by_leaves(workspace: P
     ("body", "match"),
     [
         ('<rosparam command="delete" param="x"/>', r"command='delete' is not provided by Skydeck \(it loads parameters only\)"),
-        ("<rosparam>a: [1, 2</rosparam>", r"line 2: <rosparam>: not valid YAML"),
+        ("<rosparam>a: [1, 2</rosparam>", r"line 2: <rosparam>: its text: YAML syntax error at line 1"),
         ("<rosparam>[1, 2]</rosparam>", r"without param=, the YAML must be a mapping"),
         ('<rosparam file="nope.yaml"/>', r"file .*nope.yaml: cannot read it"),
     ],

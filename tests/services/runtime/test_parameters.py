@@ -168,13 +168,12 @@ def test_an_on_set_callback_may_refuse_with_a_reason_and_the_latest_is_asked_fir
         asked.append("anything")
         return SetParametersResult(successful=True)
 
-    params.add_on_set_callback(at_most_one)
-    params.add_on_set_callback(anything)
+    params.on_set_callbacks.extend([anything, at_most_one])  # asked in this order
     events.clear()
     [result] = params.set([Parameter("speed", value=3.0)])
     assert result == SetParametersResult(successful=False, reason="speed is at most 1 m/s")
     assert asked == ["anything", "at_most_one"] and params.get("speed").value == 0.5 and not events
-    params.remove_on_set_callback(at_most_one)
+    params.on_set_callbacks.remove(at_most_one)
     assert params.set([Parameter("speed", value=3.0)])[0].successful
 
 
@@ -190,7 +189,7 @@ def test_atomic_sets_change_all_or_nothing() -> None:
 def test_a_callback_returning_something_else_is_a_type_error_and_its_exception_propagates() -> None:
     params, _ = _parameters()
     params.declare("a", 1)
-    params.add_on_set_callback(lambda parameters: True)  # type: ignore[arg-type, return-value]
+    params.on_set_callbacks.append(lambda parameters: True)  # type: ignore[arg-type, return-value]
     with pytest.raises(TypeError, match="expected SetParametersResult"):
         params.set([Parameter("a", value=2)])
     with pytest.raises(TypeError):
@@ -236,7 +235,7 @@ def test_events_name_new_and_changed_parameters() -> None:
 def test_post_set_callbacks_see_accepted_changes_only() -> None:
     params, _ = _parameters()
     seen: list[list[str]] = []
-    params.add_post_set_callback(lambda parameters: seen.append([p.name for p in parameters]))
+    params.post_set_callbacks.append(lambda parameters: seen.append([p.name for p in parameters]))
     params.declare("a", 1)
     params.set([Parameter("a", value="no")])
     params.set([Parameter("a", value=2)])

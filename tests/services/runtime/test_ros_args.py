@@ -101,7 +101,7 @@ def test_bad_ros_arguments_are_one_clear_error(args: list[str], message: str) ->
         ("ai: 3", "expected {ros__parameters"),
         ("ai:\n  ros__parameters: [1]", "must be a mapping"),
         ("ai:\n  ros__parameters:\n    x: [1, a]", "parameter 'x'"),
-        ("ai: [", "not valid YAML"),
+        ("ai: [", "YAML syntax error at line 1"),
     ],
 )
 def test_bad_params_files_say_where(text: str, message: str) -> None:
