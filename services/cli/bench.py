@@ -28,7 +28,7 @@ def add_parser(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) 
             "table of values, references and ratios (progress on stderr). See docs/performance.md."
         ),
     )
-    p.add_argument("--quick", action="store_true", help="short run for CI (well under 3 minutes on 2 cores)")
+    p.add_argument("--quick", action="store_true", help="short run for CI: each family once (about 4 minutes on 2 cores)")
     p.add_argument("--out", type=writable_file, metavar="FILE.json", help="write the results as JSON")
     p.add_argument(
         "--plots",
