@@ -37,6 +37,7 @@ __all__ = [
     "MIN_TOKEN_LENGTH",
     "ClassTokensError",
     "TokenSet",
+    "check_class_names",
     "check_student_name",
     "make_class_tokens",
     "read_tokens",
@@ -72,20 +73,45 @@ def check_student_name(name: str) -> str:
     return name
 
 
-def _check_roster(names: Iterable[str]) -> list[str]:
-    seen: dict[str, str] = {}
-    checked = []
-    for name in names:
-        check_student_name(name)
-        twin = seen.get(name.lower())
-        if twin is not None:
-            same = "twice" if twin == name else f"as {twin!r} and {name!r} (names differ in more than case)"
-            raise ClassTokensError(f"the roster names {name!r} {same}: each student needs a name of their own")
-        seen[name.lower()] = name
-        checked.append(name)
-    if not checked:
-        raise ClassTokensError("the roster names no student")
-    return checked
+class _StudentNames:
+    """The class's one rule for a list of students: each a student's name
+    (:func:`check_student_name`) and none twice in any case. Each name comes with where it was
+    found (``FILE:LINE``, a folder, ``name 3``), which a refusal names."""
+
+    def __init__(self) -> None:
+        self._first: dict[str, str] = {}  # the name in lower case -> where it was first
+
+    def add(self, where: str, name: str) -> str:
+        try:
+            check_student_name(name)
+        except ClassTokensError as error:
+            raise ClassTokensError(_at(where, str(error))) from None
+        first = self._first.get(name.lower())
+        if first is not None:
+            raise ClassTokensError(_at(where, f"{name} is a student already ({_earlier(first, where)}): each student once"))
+        self._first[name.lower()] = where
+        return name
+
+
+def check_class_names(names: Iterable[tuple[str, str]]) -> tuple[str, ...]:
+    """The names of ``(where, name)`` pairs, each a student's name and none twice in any case;
+    ClassTokensError naming the place otherwise (``roster.csv:3: alice is a student already
+    (line 1): each student once``)."""
+    students = _StudentNames()
+    return tuple(students.add(where, name) for where, name in names)
+
+
+def _at(where: str, problem: str) -> str:
+    return f"{where}: {problem}" if where else problem
+
+
+def _earlier(first: str, where: str) -> str:
+    """Where the first of two alike names is, said from the second's place: a line of the same
+    file, ``earlier`` (the same place: a YAML list), or the other place (a folder)."""
+    first_file, _, first_line = first.rpartition(":")
+    if first_line.isdigit() and first_file == where.rpartition(":")[0]:
+        return f"line {first_line}"
+    return "earlier" if first == where else first
 
 
 def make_class_tokens(names: Iterable[str]) -> dict[str, str]:
@@ -93,7 +119,10 @@ def make_class_tokens(names: Iterable[str]) -> dict[str, str]:
 
     ClassTokensError for a bad or repeated name (one line naming it).
     """
-    tokens = {name: secrets.token_urlsafe(_TOKEN_BYTES) for name in _check_roster(names)}
+    students = check_class_names((f"name {number}", name) for number, name in enumerate(names, start=1))
+    if not students:
+        raise ClassTokensError("the roster names no student")
+    tokens = {name: secrets.token_urlsafe(_TOKEN_BYTES) for name in students}
     tokens[INSTRUCTOR] = secrets.token_urlsafe(_TOKEN_BYTES)
     return tokens
 
@@ -139,7 +168,7 @@ def read_tokens(path: Path) -> dict[str, str]:
         raise ClassTokensError(f"cannot read {path}: {getattr(error, 'strerror', None) or error}") from None
     tokens: dict[str, str] = {}
     owners: dict[str, str] = {}  # token -> name
-    lowered: set[str] = set()
+    students = _StudentNames()
     for number, row in enumerate(csv.reader(io.StringIO(text)), start=1):
         if not row or not "".join(row).strip() or row[0].lstrip().startswith("#"):
             continue
@@ -150,13 +179,10 @@ def read_tokens(path: Path) -> dict[str, str]:
         if len(fields) != 2:
             raise ClassTokensError(f"{where}: expected `name,token`, got {len(fields)} fields")
         name, token = fields
-        try:
-            if name != INSTRUCTOR:
-                check_student_name(name)
-        except ClassTokensError as error:
-            raise ClassTokensError(f"{where}: {error}") from None
-        if name.lower() in lowered:
-            raise ClassTokensError(f"{where}: {name} has a line already: one line per student")
+        if name != INSTRUCTOR:
+            students.add(where, name)
+        elif INSTRUCTOR in tokens:
+            raise ClassTokensError(f"{where}: the instructor has a line already: one line each")
         if len(token) < MIN_TOKEN_LENGTH or not _TOKEN.fullmatch(token):
             raise ClassTokensError(
                 f"{where}: {name}'s token must be at least {MIN_TOKEN_LENGTH} printable characters with no "
@@ -165,7 +191,6 @@ def read_tokens(path: Path) -> dict[str, str]:
         if token in owners:
             raise ClassTokensError(f"{where}: {name} has the token of {owners[token]}: each needs their own")
         owners[token] = name
-        lowered.add(name.lower())
         tokens[name] = token
     if INSTRUCTOR not in tokens:
         raise ClassTokensError(f"{path} has no {INSTRUCTOR} line: the instructor needs a token too")

@@ -9,7 +9,7 @@ CSV: one student a line, the name in the first column (a ``name`` header, blank 
 follows ``#`` are skipped; other columns are the instructor's own, and ignored): a plain list of
 names, one a line, is such a file, the roster ``skydeck grade --class --roster`` reads too. YAML: a list of
 names, or ``students:`` and optionally ``world:``. Names are ROS name segments (their namespace
-is ``/NAME``), each once (case aside): :func:`services.access.check_student_name`'s rule, so the
+is ``/NAME``), each once (case aside): :func:`services.access.check_class_names`'s rule, so the
 tokens file takes them as they are. Every problem is one :class:`ClassroomError` line naming
 the file and, where it can, the line.
 """
@@ -21,7 +21,7 @@ import io
 from dataclasses import dataclass
 from pathlib import Path
 
-from services.access import ClassTokensError, check_student_name
+from services.access import ClassTokensError, check_class_names
 from shared_models.errors import SkydeckError
 from shared_models.text_files import parse_yaml, read_text_file
 from sim_server.robot.limits import MAX_CLASS_ROBOTS  # pure constants: no PyBullet
@@ -97,26 +97,9 @@ def _from_yaml(path: Path, text: str) -> tuple[list[tuple[int, str]], str]:
 
 
 def check_names(names: list[tuple[str, str]]) -> tuple[str, ...]:
-    """The students' names, each a student's name (:func:`services.access.check_student_name`)
-    and none twice in any case; each comes with where it was found (``FILE:LINE``, a folder),
-    which a ClassroomError names."""
-    seen: dict[str, str] = {}
-    for where, name in names:
-        try:
-            check_student_name(name)
-        except ClassTokensError as error:
-            raise ClassroomError(f"{where}: {error}") from None
-        first = seen.get(name.lower())
-        if first is not None:
-            raise ClassroomError(f"{where}: {name} is a student already ({_earlier(first, where)}): each student once")
-        seen[name.lower()] = where
-    return tuple(name for _, name in names)
-
-
-def _earlier(first: str, where: str) -> str:
-    """Where the first of two alike names is, said from the second's place: a line of the same
-    file, ``earlier`` (the same place: a YAML list), or the other place (a folder)."""
-    first_file, _, first_line = first.rpartition(":")
-    if first_line.isdigit() and first_file == where.rpartition(":")[0]:
-        return f"line {first_line}"
-    return "earlier" if first == where else first
+    """The class's rule for its students' names (:func:`services.access.check_class_names`), each
+    with where it was found (``FILE:LINE``, a folder), as a ClassroomError."""
+    try:
+        return check_class_names(names)
+    except ClassTokensError as error:
+        raise ClassroomError(str(error)) from None

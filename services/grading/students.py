@@ -15,6 +15,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from services.access import ClassTokensError
+from services.access import check_student_name as check_student_name_of_class
 from services.classroom.roster import ClassroomError, check_names
 from services.classroom.roster import read_roster as read_class_roster
 from shared_models.errors import SkydeckError
@@ -28,9 +30,9 @@ class RosterError(SkydeckError):
 def check_student_name(name: str) -> str:
     """``name`` if it can be a student's (the class's rule), else RosterError saying why."""
     try:
-        return check_names([("", name)])[0]
-    except ClassroomError as error:
-        raise RosterError(str(error).removeprefix(": ")) from None
+        return check_student_name_of_class(name)
+    except ClassTokensError as error:
+        raise RosterError(str(error)) from None
 
 
 def read_roster(path: Path) -> list[str]:

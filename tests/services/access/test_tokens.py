@@ -34,8 +34,8 @@ def test_make_gives_each_student_and_the_instructor_a_random_token() -> None:
 @pytest.mark.parametrize(
     ("names", "said"),
     [
-        (["alice", "alice"], "names 'alice' twice"),
-        (["alice", "Alice"], "as 'alice' and 'Alice'"),
+        (["alice", "alice"], "name 2: alice is a student already (name 1): each student once"),
+        (["alice", "bob", "Alice"], "name 3: Alice is a student already (name 1)"),
         (["al ice"], "cannot be a student's name"),
         (["1alice"], "cannot be a student's name"),
         (["alice/bob"], "cannot be a student's name"),
@@ -88,7 +88,8 @@ GOOD = "x" * 20
         (f"alice,{GOOD}1\ninstructor,{GOOD}2\n", 0o644, "may be read by others (mode 644): `chmod 600"),
         (f"alice,{GOOD}1\n", 0o600, "has no instructor line"),
         (f"alice,{GOOD}1,extra\ninstructor,{GOOD}2\n", 0o600, "tokens.csv:1: expected `name,token`, got 3 fields"),
-        (f"alice,{GOOD}1\nalice,{GOOD}3\ninstructor,{GOOD}2\n", 0o600, "tokens.csv:2: alice has a line already"),
+        (f"alice,{GOOD}1\nalice,{GOOD}3\ninstructor,{GOOD}2\n", 0o600, "tokens.csv:2: alice is a student already (line 1): each student once"),
+        (f"alice,{GOOD}1\ninstructor,{GOOD}2\ninstructor,{GOOD}3\n", 0o600, "tokens.csv:3: the instructor has a line already"),
         (f"alice,short\ninstructor,{GOOD}2\n", 0o600, "tokens.csv:1: alice's token must be at least 16"),
         (f"alice,{GOOD} 1\ninstructor,{GOOD}2\n", 0o600, "no spaces"),
         (f"bob,{GOOD}1\nalice,{GOOD}1\ninstructor,{GOOD}2\n", 0o600, "tokens.csv:2: alice has the token of bob"),
