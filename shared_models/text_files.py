@@ -13,7 +13,7 @@ from typing import Any
 
 import yaml
 
-__all__ = ["parse_yaml", "read_text_file"]
+__all__ = ["YamlProblem", "parse_yaml", "read_text_file"]
 
 
 def read_text_file(path: Path, what: str, error: Callable[[str], Exception]) -> str:
@@ -29,14 +29,25 @@ def read_text_file(path: Path, what: str, error: Callable[[str], Exception]) -> 
         raise error(f"cannot read it: {getattr(problem, 'strerror', None) or problem}") from None
 
 
-def parse_yaml(text: str, error: Callable[[str], Exception], *, nodes: bool = False) -> Any:
+class YamlProblem(str):
+    """What :func:`parse_yaml` says of a syntax error: ``YAML syntax error at line L, column C:
+    PROBLEM``, with ``line`` (1-based, 0 when YAML did not say) and ``problem`` apart for a
+    caller that puts the line elsewhere (``FILE:LINE: ...``)."""
+
+    line: int
+    problem: str
+
+
+def parse_yaml(text: str, error: Callable[[YamlProblem], Exception], *, nodes: bool = False) -> Any:
     """The document in ``text`` (``yaml.safe_load``'s values, or with ``nodes`` ``yaml.compose``'s
-    nodes, which keep their lines); a syntax error raises ``error(reason)``, the reason
-    ``YAML syntax error at line L, column C: PROBLEM``."""
+    nodes, which keep their lines); a syntax error raises ``error(reason)``, the reason a
+    :class:`YamlProblem`."""
     try:
         return yaml.compose(text) if nodes else yaml.safe_load(text)
-    except yaml.YAMLError as problem:
-        mark = getattr(problem, "problem_mark", None)
-        what = getattr(problem, "problem", None) or str(problem).splitlines()[0]
+    except yaml.YAMLError as raised:
+        mark = getattr(raised, "problem_mark", None)
+        what = getattr(raised, "problem", None) or str(raised).splitlines()[0]
         where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark is not None else ""
-        raise error(f"YAML syntax error{where}: {what}") from None
+        reason = YamlProblem(f"YAML syntax error{where}: {what}")
+        reason.line, reason.problem = (mark.line + 1 if mark is not None else 0), what
+        raise error(reason) from None

@@ -274,7 +274,9 @@ def _flag(value: list[Substitution] | None, default: bool, place: Place) -> bool
 
 def _read_yaml(path: Path) -> Element:
     """A ROS 2 YAML launch file as the elements its XML would have (lines kept)."""
-    document = parse_yaml(read_launch_text(path), Place(path).error, nodes=True)
+    document = parse_yaml(
+        read_launch_text(path), lambda reason: Place(path, reason.line).error(f"YAML syntax error: {reason.problem}"), nodes=True
+    )
     if not isinstance(document, yaml.MappingNode):
         raise Place(path).error("expected a mapping with a `launch:` list at the top")
     for key, value in document.value:

@@ -192,7 +192,7 @@ def test_xml_and_yaml_if_unless_let_and_env(package: Path) -> None:
         ("e.launch.xml", '<launch>\n<node pkg="launch_demo" exec="talker" name="$(var who)"/>\n</launch>',
          r"e.launch.xml:2: launch configuration 'who' is not set"),
         ("a.launch.yaml", "launch:\n- node: {pkg: launch_demo, exec: talker}\n- timer: {period: 1}\n", r"a.launch.yaml:3: <timer> is not provided by Skydeck"),
-        ("b.launch.yaml", "launch:\n- node: [1, 2\n", r"b.launch.yaml: YAML syntax error at line \d+"),
+        ("b.launch.yaml", "launch:\n- node: [1, 2\n", r"b.launch.yaml:\d+: YAML syntax error"),
         ("c.launch.yaml", "launch: 5\n", r"c.launch.yaml:1: `launch:` is a list of actions"),
     ],
 )
