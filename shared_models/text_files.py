@@ -37,6 +37,12 @@ class YamlProblem(str):
     line: int
     problem: str
 
+    def __new__(cls, problem: str, line: int = 0, column: int = 0) -> YamlProblem:
+        where = f" at line {line}, column {column}" if line else ""
+        reason = super().__new__(cls, f"YAML syntax error{where}: {problem}")
+        reason.line, reason.problem = line, problem
+        return reason
+
 
 def parse_yaml(text: str, error: Callable[[YamlProblem], Exception], *, nodes: bool = False) -> Any:
     """The document in ``text`` (``yaml.safe_load``'s values, or with ``nodes`` ``yaml.compose``'s
@@ -47,7 +53,5 @@ def parse_yaml(text: str, error: Callable[[YamlProblem], Exception], *, nodes: b
     except yaml.YAMLError as raised:
         mark = getattr(raised, "problem_mark", None)
         what = getattr(raised, "problem", None) or str(raised).splitlines()[0]
-        where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark is not None else ""
-        reason = YamlProblem(f"YAML syntax error{where}: {what}")
-        reason.line, reason.problem = (mark.line + 1 if mark is not None else 0), what
-        raise error(reason) from None
+        place = (mark.line + 1, mark.column + 1) if mark is not None else ()
+        raise error(YamlProblem(what, *place)) from None

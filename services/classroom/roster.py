@@ -26,7 +26,7 @@ from shared_models.errors import SkydeckError
 from shared_models.text_files import parse_yaml, read_text_file
 from sim_server.robot.limits import MAX_CLASS_ROBOTS  # pure constants: no PyBullet
 
-__all__ = ["CLASS_WORLDS", "ClassroomError", "Roster", "check_names", "read_roster"]
+__all__ = ["CLASS_WORLDS", "ClassroomError", "Roster", "read_roster"]
 
 CLASS_WORLDS = ("robot",)
 """The worlds a class runs in: the robot world holds a robot per student (the drone world one drone)."""
@@ -62,7 +62,7 @@ def read_roster(path: Path, *, max_students: int | None = MAX_CLASS_ROBOTS) -> R
         )
     if not names:
         raise ClassroomError(f"{path} names no student: one name a line")
-    students = check_names([(f"{path}:{number}" if number else str(path), name) for number, name in names])
+    students = _check_names([(f"{path}:{number}" if number else str(path), name) for number, name in names])
     if max_students is not None and len(students) > max_students:
         raise ClassroomError(
             f"{path} names {len(students)} students; a room holds {max_students} robots: split the class in two"
@@ -96,7 +96,7 @@ def _from_yaml(path: Path, text: str) -> tuple[list[tuple[int, str]], str]:
     return [(0, name.strip()) for name in data], world
 
 
-def check_names(names: list[tuple[str, str]]) -> tuple[str, ...]:
+def _check_names(names: list[tuple[str, str]]) -> tuple[str, ...]:
     """The class's rule for its students' names (:func:`services.access.check_class_names`), each
     with where it was found (``FILE:LINE``, a folder), as a ClassroomError."""
     try:

@@ -15,9 +15,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from services.access import ClassTokensError
+from services.access import ClassTokensError, check_class_names
 from services.access import check_student_name as check_student_name_of_class
-from services.classroom.roster import ClassroomError, check_names
+from services.classroom.roster import ClassroomError
 from services.classroom.roster import read_roster as read_class_roster
 from shared_models.errors import SkydeckError
 
@@ -78,8 +78,8 @@ def find_submissions(folder: Path, roster: list[str] | None = None) -> Found:
     folders = sorted(entry for entry in folder.iterdir() if entry.is_dir() and not entry.name.startswith("."))
     if roster is None:
         try:
-            names = check_names([(str(entry), entry.name) for entry in folders])
-        except ClassroomError as error:
+            names = check_class_names((str(entry), entry.name) for entry in folders)
+        except ClassTokensError as error:
             raise RosterError(str(error)) from None
         if not names:
             raise RosterError(f"{folder}: no student's folder in it (one folder per student, NAME/*.py)")
