@@ -47,9 +47,10 @@ def test_a_camera_node_converts_the_simulators_frames_with_cv_bridge(room: Syste
     ):
         node.wait_for_line(lambda line: sum(x.startswith("RAW ") for x in node.lines) >= 5, 90)
         node.wait_for_line("JPEG ", 30)
+        lines = list(node.lines)  # before the Ctrl-C, which may cut a print short
     frames = {_key(m): _pixels(m, 3) for m in raw.messages if m["encoding"] == "rgb8"}
     checked = 0
-    for line in node.lines:
+    for line in lines:
         if not line.startswith("RAW "):
             continue
         stamp, width, height, blue, green, red = line.split()[1:]
@@ -72,7 +73,7 @@ def test_a_camera_node_converts_the_simulators_frames_with_cv_bridge(room: Syste
     assert png["format"] == "png"
     decoded = cv2.imdecode(np.frombuffer(base64.b64decode(png["data"]), np.uint8), cv2.IMREAD_UNCHANGED)
     assert decoded.ndim == 2 and set(np.unique(decoded)) <= {0, 255}
-    jpeg_means = [list(map(float, line.split()[2:])) for line in node.lines if line.startswith("JPEG ")]
+    jpeg_means = [list(map(float, line.split()[2:])) for line in lines if line.startswith("JPEG ")]
     raw_means = [[f[:, :, 2].mean(), f[:, :, 1].mean(), f[:, :, 0].mean()] for f in frames.values()]
     assert min(np.abs(np.subtract(jpeg_means[-1], means)).max() for means in raw_means) < 4  # the same view, lossy
     assert no_skydeck_frames(node.lines) and not any("Traceback" in line for line in node.lines), node.tail()
