@@ -31,6 +31,10 @@ CORE_NODE_PATH = "/api/core"
 """Where the core's own topics are served: ``ws://CORE/api/core/TOPIC``."""
 
 _STATS_PERIOD_S = 1.0
+_EARLY_S = 2.0
+"""How long a client's new publication keeps its first messages for nodes that link late:
+rosbridge for ROS 1 keeps them one second; a node's link here (the registry's push, then a
+WebSocket handshake) can take longer on a loaded machine."""
 
 
 @dataclass
@@ -132,6 +136,8 @@ class CoreNode:
             publication.expiry = None
         publication.sockets += 1
         publication.latched += latched
+        if not endpoint.publishing:
+            endpoint.hold_early(_EARLY_S)  # subscribed nodes link after this; what it sends first waits for them
         if not endpoint.publishing or endpoint.latched != (publication.latched > 0):
             endpoint.publishing = True
             endpoint.latched = publication.latched > 0

@@ -14,6 +14,7 @@ own ``ws://NODE/TOPIC`` talks to.
 from __future__ import annotations
 
 import logging
+import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
@@ -27,9 +28,12 @@ from shared_models import Message
 if TYPE_CHECKING:
     from services.runtime.subscription import Subscription
 
-__all__ = ["TopicEndpoint"]
+__all__ = ["EARLY_FRAMES", "TopicEndpoint"]
 
 logger = logging.getLogger("skydeck.runtime")
+
+EARLY_FRAMES = 20
+"""At most this many of a new publication's first messages wait for its late readers (hold_early)."""
 
 
 class TopicEndpoint:
@@ -53,6 +57,8 @@ class TopicEndpoint:
         # Readers in a lockstep run (services.runtime.lockstep): their name, and the count of
         # messages published here before they came (every later one is handed to them).
         self._counted_readers: dict[Outbox, tuple[str, int]] = {}
+        self._early: list[Frames] | None = None  # see hold_early
+        self._early_until = 0.0
 
     @property
     def subscribed(self) -> bool:
@@ -67,6 +73,22 @@ class TopicEndpoint:
     def forget_latest(self) -> None:
         self.latest = None
 
+    def hold_early(self, seconds: float) -> None:
+        """Keep what is published in the next ``seconds`` (up to EARLY_FRAMES of it) for the
+        readers that link within them.
+
+        A subscriber links to a new publisher a moment after it advertises; a client that
+        publishes at once (roslibpy's actionlib client sends its goal as soon as it hears the
+        server's status) would reach no one. rosbridge for ROS 1 does the same for its clients'
+        publishers (its PublisherConsistencyListener, one second)."""
+        self._early = []
+        self._early_until = time.monotonic() + seconds
+
+    def _still_early(self) -> bool:
+        if self._early is not None and time.monotonic() >= self._early_until:
+            self._early = None
+        return self._early is not None
+
     # -- messages ---------------------------------------------------------------------------
 
     def dispatch(self, msg: Message, frames: Frames | None = None, sender: Outbox | None = None) -> None:
@@ -77,6 +99,8 @@ class TopicEndpoint:
         frames = Frames(msg) if frames is None else frames
         self.latest = frames
         self.published_count += 1
+        if self._early is not None and self._still_early() and len(self._early) < EARLY_FRAMES:
+            self._early.append(frames)
         for outbox in self.outboxes:
             if outbox is not sender:
                 outbox.push(frames.get(outbox.encoding))
@@ -176,15 +200,21 @@ class TopicEndpoint:
     # -- the node's own socket (TopicPort) --------------------------------------------------
 
     def open(self, connection: TopicConnection) -> Frame | None:
-        """A socket reads what this participant publishes; a latched topic's latest goes first."""
+        """A socket reads what this participant publishes; a latched topic's latest goes first,
+        an unlatched one's first messages if it was advertised a moment ago (hold_early)."""
         initial = None
+        handed = 0
         if self.latched and self.publishing and self.latest is not None:
             initial = self.latest.get(connection.encoding)
+            handed = 1
+        elif self._still_early() and self._early and connection.outbox is not None:
+            for frames in self._early:  # the outbox is drained once the socket serves
+                connection.outbox.push(frames.get(connection.encoding))
+            handed = len(self._early)
         if connection.outbox is not None:
             self.outboxes.add(connection.outbox)
             if connection.options.reader:
-                already = self.published_count - (1 if initial is not None else 0)
-                self._counted_readers[connection.outbox] = (connection.options.reader, already)
+                self._counted_readers[connection.outbox] = (connection.options.reader, self.published_count - handed)
         return initial
 
     def sent_to_readers(self) -> list[tuple[str, int]]:

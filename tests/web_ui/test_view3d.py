@@ -140,7 +140,8 @@ def test_orbit_pan_zoom_top_down_and_follow(dashboard, system: System) -> None: 
     open_3d(page)
     box = page.locator("#view3d-canvas").bounding_box()
     cx, cy = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
-    before = view(page)["camera"]
+    # Once the world is known the view frames it, once, moving the target: the drag comes after.
+    before = wait_view(page, "v.camera.world !== null")["camera"]
     page.mouse.move(cx, cy)
     page.mouse.down()
     page.mouse.move(cx + 120, cy + 30, steps=8)

@@ -92,6 +92,19 @@ async def test_a_late_subscriber_gets_the_latched_message(bridge: Bridge) -> Non
             assert (await receive(late, "publish"))["msg"] == {"data": "twice"}  # "once" never came
 
 
+async def test_a_message_published_right_after_advertise_reaches_a_subscribed_node(bridge: Bridge) -> None:
+    # The drone subscribes to /drone/cmd_vel and links to the core only once the core publishes
+    # it; what the client sends in that moment waits for the link (roslibpy's actionlib goal).
+    async with connect(bridge.rosbridge_url) as ws:
+        await send(ws, op="advertise", topic="/drone/cmd_vel", type="geometry_msgs/msg/Twist")
+        await send(ws, op="publish", topic="/drone/cmd_vel", msg={"linear": {"x": 1.0}})
+        await send(ws, op="publish", topic="/drone/cmd_vel", msg={"linear": {"x": 2.0}})
+        await wait_until(lambda: len(bridge.drone.commands) >= 2, what="the drone to get both commands")
+        await send(ws, op="publish", topic="/drone/cmd_vel", msg={"linear": {"x": 3.0}})
+        await wait_until(lambda: len(bridge.drone.commands) >= 3, what="the third command")
+    assert [command.linear.x for command in bridge.drone.commands] == [1.0, 2.0, 3.0]  # each once, in order
+
+
 async def test_fragments_both_ways(bridge: Bridge) -> None:
     async with connect(bridge.rosbridge_url) as ws:
         await send(ws, op="subscribe", topic="/drone/pose", fragment_size=50)
