@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import pybullet as p
 
-from sim_server.drone.limits import PHYSICS_HZ
+from sim_server.drone.limits import MAX_BOXES, PHYSICS_HZ
 from sim_server.drone.world import World, WorldConfig
 from sim_server.speed_command import print_reading
 
@@ -84,7 +84,7 @@ def _bare_rate(seed: int, boxes: int, steps: int) -> float:
 
 def main() -> None:
     """Print one reading."""
-    print_reading(__doc__ or "", measure, count="boxes", default=8)
+    print_reading(__doc__ or "", measure, count="boxes", default=8, span=(0, MAX_BOXES))
 
 
 if __name__ == "__main__":

@@ -16,6 +16,7 @@ import pybullet as p
 from sim_server.robot.bodies import SCAN_MASK
 from sim_server.robot.limits import (
     CONTROL_EVERY_STEPS,
+    MAX_CLASS_ROBOTS,
     ODOM_EVERY_STEPS,
     PHYSICS_HZ,
     SCAN_EVERY_STEPS,
@@ -148,7 +149,7 @@ def _bare_rate(seed: int, robots: int, steps: int) -> _Run:
 
 def main() -> None:
     """Print one reading."""
-    print_reading(__doc__ or "", measure, count="robots", default=1)
+    print_reading(__doc__ or "", measure, count="robots", default=1, span=(1, MAX_CLASS_ROBOTS))
 
 
 if __name__ == "__main__":

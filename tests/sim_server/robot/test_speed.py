@@ -9,7 +9,7 @@ import sys
 
 import pytest
 
-from sim_server.robot.limits import PHYSICS_HZ, SCAN_EVERY_STEPS
+from sim_server.robot.limits import MAX_CLASS_ROBOTS, PHYSICS_HZ, SCAN_EVERY_STEPS
 from sim_server.robot.speed import main, measure
 
 
@@ -28,3 +28,12 @@ def test_the_command_prints_one_line(monkeypatch: pytest.MonkeyPatch, capsys: py
     main()
     (line,) = capsys.readouterr().out.splitlines()
     assert line.startswith("robot world: ") and "bare loop: " in line and "per CPU second: world " in line
+
+
+def test_a_robot_count_out_of_range_is_one_line(monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    monkeypatch.setattr(sys, "argv", ["speed", "--robots", "0"])
+    with pytest.raises(SystemExit):
+        main()
+    assert capsys.readouterr().err.splitlines()[-1] == (
+        f"speed: error: argument --robots: a whole number from 1 to {MAX_CLASS_ROBOTS}, not '0'"
+    )
