@@ -38,7 +38,8 @@ class BallTracker(Node):
         self.ball_seen = False
         self.create_subscription(Image, image_topic, self.process_image, 10)
         self.pub = self.create_publisher(Twist, 'cmd_vel', 10)
-        Thread(target=self.loop_wrapper, daemon=True).start()
+        self.loop_thread = Thread(target=self.loop_wrapper)
+        self.loop_thread.start()
 
     def process_image(self, msg):
         """ Keep the newest image; the loop works on it at its own pace. """
@@ -117,6 +118,10 @@ def main(args=None):
         rclpy.spin(node)
     except KeyboardInterrupt:   # Ctrl-C: stop the robot on the way out
         node.pub.publish(Twist())
+    # End the loop's thread before the program ends: Python stops a thread that is still
+    # running when it exits wherever it is, even inside OpenCV, which aborts the program.
+    node.running = False
+    node.loop_thread.join()
     node.destroy_node()
     rclpy.try_shutdown()
 
