@@ -9,6 +9,7 @@ export class GraphPoller extends EventTarget {
   constructor() {
     super();
     this.graph = null;
+    this.raw = null; // the core's last answer, before the filter
     this.error = null;
     this.failures = 0;
     this.filter = (graph) => graph; // what the page's token may see of it (access.js)
@@ -17,7 +18,8 @@ export class GraphPoller extends EventTarget {
   start() {
     const poll = async () => {
       try {
-        this.graph = this.filter(await getJson("/api/graph"));
+        this.raw = await getJson("/api/graph");
+        this.graph = this.filter(this.raw);
         this.error = null;
         this.failures = 0;
       } catch (error) {
@@ -28,6 +30,14 @@ export class GraphPoller extends EventTarget {
       setTimeout(poll, this.failures ? Math.min(POLL_MS * this.failures, 5000) : POLL_MS);
     };
     poll();
+  }
+
+  /** Filter the last graph again (the token's rights changed) and tell the page at once, so no
+   * graph fetched before the core said who the token is stays shown until the next poll. */
+  refilter() {
+    if (this.raw === null) return;
+    this.graph = this.filter(this.raw);
+    this.dispatchEvent(new Event("update"));
   }
 
   topicType(name) {

@@ -198,6 +198,7 @@ initTokenButton($("token-button"));
 graph.filter = (g) => access.filterGraph(g);
 access.addEventListener("change", () => {
   setReadable((topic) => access.mayRead(topic));
+  graph.refilter();
   classPage.setAvailable(access.isInstructor);
   if (access.isInstructor && location.hash === "#class") viewTabs.show("class");
   if (world.kind) applyWorld(); // a student's robots only
