@@ -32,6 +32,8 @@ __all__ = ["EARLY_FRAMES", "TopicEndpoint"]
 
 logger = logging.getLogger("skydeck.runtime")
 
+_monotonic = time.monotonic  # a global's lookup (and a test's clock), as in services.access.rates
+
 EARLY_FRAMES = 20
 """At most this many of a new publication's first messages wait for its late readers (hold_early)."""
 
@@ -82,10 +84,10 @@ class TopicEndpoint:
         server's status) would reach no one. rosbridge for ROS 1 does the same for its clients'
         publishers (its PublisherConsistencyListener, one second)."""
         self._early = []
-        self._early_until = time.monotonic() + seconds
+        self._early_until = _monotonic() + seconds
 
     def _still_early(self) -> bool:
-        if self._early is not None and time.monotonic() >= self._early_until:
+        if self._early is not None and _monotonic() >= self._early_until:
             self._early = None
         return self._early is not None
 

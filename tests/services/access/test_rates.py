@@ -8,26 +8,19 @@ import pytest
 
 import services.access.rates as rates
 from services.access import RateLimited, RateLimits
+from tests.fake_clock import FakeClock
 
 pytestmark = pytest.mark.timeout(30)
 
 
-class Clock:
-    def __init__(self) -> None:
-        self.now = 100.0
-
-    def __call__(self) -> float:
-        return self.now
-
-
 @pytest.fixture
-def clock(monkeypatch: pytest.MonkeyPatch) -> Clock:
-    fake = Clock()
+def clock(monkeypatch: pytest.MonkeyPatch) -> FakeClock:
+    fake = FakeClock()
     monkeypatch.setattr(rates, "_monotonic", fake)
     return fake
 
 
-def test_a_seconds_worth_passes_then_a_flood_is_caught_and_time_refills_it(clock: Clock) -> None:
+def test_a_seconds_worth_passes_then_a_flood_is_caught_and_time_refills_it(clock: FakeClock) -> None:
     bucket = RateLimits(messages_per_s=10, bytes_per_s=10_000, calls_in_flight=2).bucket("alice")
     for _ in range(10):
         bucket.spend(10)
@@ -42,7 +35,7 @@ def test_a_seconds_worth_passes_then_a_flood_is_caught_and_time_refills_it(clock
         bucket.spend(10)
 
 
-def test_bytes_are_counted_too(clock: Clock) -> None:
+def test_bytes_are_counted_too(clock: FakeClock) -> None:
     bucket = RateLimits(messages_per_s=1000, bytes_per_s=1000, calls_in_flight=2).bucket("bob")
     bucket.spend(900)
     with pytest.raises(RateLimited, match="over 1000 bytes/s"):
@@ -51,7 +44,7 @@ def test_bytes_are_counted_too(clock: Clock) -> None:
     bucket.spend(200)
 
 
-def test_idle_time_does_not_save_up_more_than_a_second(clock: Clock) -> None:
+def test_idle_time_does_not_save_up_more_than_a_second(clock: FakeClock) -> None:
     bucket = RateLimits(messages_per_s=5, bytes_per_s=1e9, calls_in_flight=2).bucket("alice")
     clock.now += 3600
     for _ in range(5):
@@ -60,7 +53,7 @@ def test_idle_time_does_not_save_up_more_than_a_second(clock: Clock) -> None:
         bucket.spend(1)
 
 
-def test_one_bucket_per_student_whatever_the_connections(clock: Clock) -> None:
+def test_one_bucket_per_student_whatever_the_connections(clock: FakeClock) -> None:
     limits = RateLimits(messages_per_s=3, bytes_per_s=1e9, calls_in_flight=2)
     assert limits.bucket("alice") is limits.bucket("alice") and limits.bucket("alice") is not limits.bucket("bob")
     for _ in range(3):
@@ -81,7 +74,7 @@ def test_calls_waiting_at_once_are_bounded() -> None:
         pass
 
 
-def test_the_clock_is_read_every_few_messages_and_a_flood_is_still_caught_within_them(clock: Clock, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_the_clock_is_read_every_few_messages_and_a_flood_is_still_caught_within_them(clock: FakeClock, monkeypatch: pytest.MonkeyPatch) -> None:
     bucket = RateLimits(messages_per_s=200, bytes_per_s=1e9, calls_in_flight=2).bucket("alice")
     reads = []
     monkeypatch.setattr(rates, "_monotonic", lambda: reads.append(1) or clock.now)

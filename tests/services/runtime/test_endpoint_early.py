@@ -13,22 +13,15 @@ from services.runtime.edge.outbox import Outbox
 from services.runtime.edge.topic_socket import TopicConnection
 from services.runtime.endpoint import EARLY_FRAMES, TopicEndpoint
 from shared_models.std_msgs import String
+from tests.fake_clock import FakeClock
 
 pytestmark = pytest.mark.timeout(10)
 
 
-class Clock:
-    def __init__(self) -> None:
-        self.now = 100.0
-
-    def __call__(self) -> float:
-        return self.now
-
-
 @pytest.fixture
-def clock(monkeypatch: pytest.MonkeyPatch) -> Clock:
-    clock = Clock()
-    monkeypatch.setattr(endpoint_module.time, "monotonic", clock)
+def clock(monkeypatch: pytest.MonkeyPatch) -> FakeClock:
+    clock = FakeClock()
+    monkeypatch.setattr(endpoint_module, "_monotonic", clock)
     return clock
 
 
@@ -48,7 +41,7 @@ async def _link(endpoint: TopicEndpoint) -> tuple[str | None, list[str]]:
     return (json.loads(initial)["data"] if initial is not None else None), waiting
 
 
-async def test_a_reader_linking_in_the_moment_after_advertise_gets_what_was_sent_in_order(clock: Clock) -> None:
+async def test_a_reader_linking_in_the_moment_after_advertise_gets_what_was_sent_in_order(clock: FakeClock) -> None:
     endpoint = _publishing()
     endpoint.dispatch(String(data="goal"))
     endpoint.dispatch(String(data="cancel"))
@@ -58,7 +51,7 @@ async def test_a_reader_linking_in_the_moment_after_advertise_gets_what_was_sent
     assert await _link(endpoint) == (None, ["goal", "cancel", "later"])
 
 
-async def test_after_the_moment_an_unlatched_topic_gives_a_new_reader_nothing(clock: Clock) -> None:
+async def test_after_the_moment_an_unlatched_topic_gives_a_new_reader_nothing(clock: FakeClock) -> None:
     endpoint = _publishing()
     endpoint.dispatch(String(data="goal"))
     clock.now += 2.0
@@ -67,21 +60,21 @@ async def test_after_the_moment_an_unlatched_topic_gives_a_new_reader_nothing(cl
     assert await _link(endpoint) == (None, [])
 
 
-async def test_a_latched_topic_gives_its_latest_only_as_always(clock: Clock) -> None:
+async def test_a_latched_topic_gives_its_latest_only_as_always(clock: FakeClock) -> None:
     endpoint = _publishing(latched=True)
     endpoint.dispatch(String(data="one"))
     endpoint.dispatch(String(data="two"))
     assert await _link(endpoint) == ("two", [])
 
 
-async def test_only_the_first_messages_are_kept(clock: Clock) -> None:
+async def test_only_the_first_messages_are_kept(clock: FakeClock) -> None:
     endpoint = _publishing()
     for number in range(EARLY_FRAMES + 5):
         endpoint.dispatch(String(data=str(number)))
     assert await _link(endpoint) == (None, [str(number) for number in range(EARLY_FRAMES)])
 
 
-async def test_a_topic_never_held_gives_a_new_reader_nothing(clock: Clock) -> None:
+async def test_a_topic_never_held_gives_a_new_reader_nothing(clock: FakeClock) -> None:
     endpoint = TopicEndpoint("/said", String)
     endpoint.publishing = True
     endpoint.dispatch(String(data="before"))
